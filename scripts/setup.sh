@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Installs vorogeo's build dependencies from Debian packages. Idempotent: prints
+# nothing and changes nothing when everything is already present.
+set -euo pipefail
+
+packages=(cmake g++ make libopenmesh-dev libzstd-dev libflatbuffers-dev flatbuffers-compiler
+          libtbb-dev catch2 libstb-dev)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "setup: installing ${missing[*]}"
+SUDO=""
+[ "$(id -u)" -ne 0 ] && SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,0 +1,60 @@
+// vorogeo: git-style front end; each subcommand lives in its own cmd_*.cpp.
+#include <cstdio>
+#include <cstring>
+#include <exception>
+
+#include "cli.h"
+#include "commands.h"
+#include "vorogeo.h"
+
+namespace vorogeo::tools {
+// Declarations of the subcommands (one file each).
+// (keep in the same order as the table below)
+}  // namespace vorogeo::tools
+
+namespace {
+
+using vorogeo::tools::Command;
+
+const Command kCommands[] = {
+    {nullptr, nullptr, nullptr},  // sentinel, keeps the array non-empty
+};
+
+void printUsage(FILE* out) {
+    std::fprintf(out, "usage: vorogeo <command> [arguments]\n\ncommands:\n");
+    for (const Command& c : kCommands)
+        if (c.name) std::fprintf(out, "  %-12s %s\n", c.name, c.summary);
+    std::fprintf(out, "\nvorogeo <command> --help shows the arguments of a command.\n");
+}
+
+}  // namespace
+
+const Command* vorogeo::tools::commands() { return kCommands; }
+int vorogeo::tools::commandCount() { return int(sizeof(kCommands) / sizeof(kCommands[0])) - 1; }
+
+int main(int argc, char** argv) {
+    if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") ||
+        !std::strcmp(argv[1], "help")) {
+        printUsage(argc < 2 ? stderr : stdout);
+        return argc < 2 ? 2 : 0;
+    }
+    if (!std::strcmp(argv[1], "--version")) {
+        std::printf("vorogeo %s\n", vg_version_string());
+        return 0;
+    }
+    for (const Command& c : kCommands) {
+        if (!c.name || std::strcmp(c.name, argv[1])) continue;
+        try {
+            return c.run(argc - 2, argv + 2);
+        } catch (const vorogeo::cli::UsageError& e) {
+            std::fprintf(stderr, "vorogeo %s: %s\n", c.name, e.what());
+            return 2;
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "vorogeo %s: error: %s\n", c.name, e.what());
+            return 1;
+        }
+    }
+    std::fprintf(stderr, "vorogeo: unknown command '%s'\n", argv[1]);
+    printUsage(stderr);
+    return 2;
+}

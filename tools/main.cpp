@@ -10,6 +10,8 @@
 namespace vorogeo::tools {
 // Declarations of the subcommands (one file each).
 // (keep in the same order as the table below)
+int runInfo(int argc, char** argv);
+int runDemo(int argc, char** argv);
 }  // namespace vorogeo::tools
 
 namespace {
@@ -17,6 +19,8 @@ namespace {
 using vorogeo::tools::Command;
 
 const Command kCommands[] = {
+    {"info", "load and validate a mesh, print its statistics", vorogeo::tools::runInfo},
+    {"demo", "run the pipeline on a built-in mesh", vorogeo::tools::runDemo},
     {nullptr, nullptr, nullptr},  // sentinel, keeps the array non-empty
 };
 

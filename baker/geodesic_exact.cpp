@@ -1,0 +1,633 @@
+#include "geodesic_exact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <stdexcept>
+#include <string>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+namespace vorogeo {
+
+namespace {
+
+constexpr uint32_t kNone = 0xffffffffu;
+constexpr uint32_t kCandidate = 0xfffffffeu;
+constexpr uint32_t kVertexEvent = 0xffffffffu;  // queue-entry stamp marking a vertex event
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+// Relative tolerances, as fractions of the edge length (positions) or of the distance.
+constexpr double kPieceEps = 1e-10;   // shorter pieces are dropped
+constexpr double kGrazeEps = 1e-12;   // sources this close to the edge line do not propagate
+constexpr double kWinEps = 1e-12;     // a candidate must beat a window by this much
+
+inline double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
+
+inline double windowDistance(double sx, double sy, double sigma, double x) {
+    double dx = x - sx;
+    return sigma + std::sqrt(dx * dx + sy * sy);
+}
+
+// Smallest distance of a window over its extent.
+inline double windowMin(double b0, double b1, double sx, double sy, double sigma) {
+    double x = std::min(std::max(sx, b0), b1);
+    return windowDistance(sx, sy, sigma, x);
+}
+
+// Points in (lo, hi) where two window distance functions may be equal: roots of the
+// quadratic obtained by squaring twice. Spurious roots only add harmless split points.
+int crossings(double wx, double wy, double ws, double ex, double ey, double es, double lo,
+              double hi, double out[2]) {
+    // Shift to the interval start to keep the squared terms small.
+    wx -= lo;
+    ex -= lo;
+    const double span = hi - lo;
+    const double c = es - ws;
+    const double alpha = 2.0 * (ex - wx);
+    const double beta = wx * wx + wy * wy - ex * ex - ey * ey - c * c;
+    const double qa = alpha * alpha - 4.0 * c * c;
+    const double qb = 2.0 * alpha * beta + 8.0 * c * c * ex;
+    const double qc = beta * beta - 4.0 * c * c * (ex * ex + ey * ey);
+    double r[2];
+    int n = 0;
+    const double scale = std::fabs(qb) * span + std::fabs(qc) + 1e-300;
+    if (std::fabs(qa) * span * span <= 1e-14 * scale) {
+        if (qb != 0.0) r[n++] = -qc / qb;
+    } else {
+        // Equal sigmas give an exact double root that rounding can push to a slightly
+        // negative discriminant: clamp, since an extra split point costs nothing.
+        const double disc = std::max(qb * qb - 4.0 * qa * qc, 0.0);
+        const double sq = std::sqrt(disc);
+        const double q = -0.5 * (qb + (qb >= 0 ? sq : -sq));
+        if (q != 0.0) {
+            r[n++] = q / qa;
+            r[n++] = qc / q;
+        } else {
+            r[n++] = 0.0;
+        }
+    }
+    int m = 0;
+    for (int i = 0; i < n; ++i)
+        if (r[i] > 0.0 && r[i] < span && std::isfinite(r[i])) out[m++] = r[i] + lo;
+    if (m == 2 && out[0] > out[1]) std::swap(out[0], out[1]);
+    return m;
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------ ExactGeodesic
+
+ExactGeodesic::ExactGeodesic(const Mesh& mesh) : mesh_(&mesh) {
+    if (mesh.twin.size() != mesh.halfedgeCount())
+        throw std::invalid_argument("exact geodesics need a mesh with connectivity built");
+    precompute();
+}
+
+ExactGeodesic::ExactGeodesic(const Mesh& mesh, const std::vector<uint32_t>& faces) {
+    owned_ = std::make_unique<Mesh>();
+    std::vector<uint32_t> sorted = faces;
+    std::sort(sorted.begin(), sorted.end());
+    sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+    for (uint32_t f : sorted)
+        if (f >= mesh.faceCount()) throw std::invalid_argument("patch face " + std::to_string(f) + " out of range");
+    for (uint32_t f : sorted)
+        for (uint32_t v : mesh.faces[f]) toGlobal_.push_back(v);
+    std::sort(toGlobal_.begin(), toGlobal_.end());
+    toGlobal_.erase(std::unique(toGlobal_.begin(), toGlobal_.end()), toGlobal_.end());
+    owned_->positions.reserve(toGlobal_.size());
+    for (uint32_t v : toGlobal_) owned_->positions.push_back(mesh.positions[v]);
+    owned_->faces.reserve(sorted.size());
+    for (uint32_t f : sorted) {
+        Tri t;
+        for (int k = 0; k < 3; ++k) t[k] = uint32_t(localVertex(mesh.faces[f][k]));
+        owned_->faces.push_back(t);
+    }
+    faceToGlobal_ = std::move(sorted);
+    // A subset of a manifold's faces is a manifold except where two fans of a vertex
+    // touch only at it; such a vertex cannot be unfolded as one and is rejected.
+    ConnectivityReport rep = buildConnectivity(*owned_);
+    if (!rep.ok)
+        throw std::invalid_argument("patch is not a manifold (vertex " +
+                                    std::to_string(globalVertex(uint32_t(rep.firstBadVertex))) + ")");
+    mesh_ = owned_.get();
+    precompute();
+}
+
+int64_t ExactGeodesic::localVertex(uint32_t global) const {
+    if (toGlobal_.empty() && !owned_) return global < mesh_->vertexCount() ? int64_t(global) : -1;
+    auto it = std::lower_bound(toGlobal_.begin(), toGlobal_.end(), global);
+    return (it != toGlobal_.end() && *it == global) ? int64_t(it - toGlobal_.begin()) : -1;
+}
+
+int64_t ExactGeodesic::localFace(uint32_t global) const {
+    if (!owned_) return global < mesh_->faceCount() ? int64_t(global) : -1;
+    auto it = std::lower_bound(faceToGlobal_.begin(), faceToGlobal_.end(), global);
+    return (it != faceToGlobal_.end() && *it == global) ? int64_t(it - faceToGlobal_.begin()) : -1;
+}
+
+void ExactGeodesic::precompute() {
+    const Mesh& m = *mesh_;
+    const uint32_t nh = m.halfedgeCount();
+    frame_.resize(nh);
+    edgeOf_.assign(nh, -1);
+    canonical_.clear();
+    edgeLength_.clear();
+    for (uint32_t h = 0; h < nh; ++h) {
+        const Vec3 p0 = m.positions[m.tail(int32_t(h))];
+        const Vec3 p1 = m.positions[m.head(int32_t(h))];
+        const Vec3 p2 = m.positions[m.apex(int32_t(h))];
+        const Vec3 e = p1 - p0, a = p2 - p0;
+        const double len = length(e);
+        double x = len > 0 ? dot(a, e) / len : 0.0;
+        double y = len > 0 ? length(cross(e, a)) / len : 0.0;
+        frame_[h] = {x, y};
+        if (edgeOf_[h] < 0) {
+            int32_t id = int32_t(canonical_.size());
+            canonical_.push_back(int32_t(h));
+            edgeLength_.push_back(len);
+            edgeOf_[h] = id;
+            if (m.twin[h] >= 0) edgeOf_[m.twin[h]] = id;
+        }
+    }
+    // Shortest paths bend only at saddle vertices (angle sum above 2*pi) and at boundary
+    // vertices; flat vertices are let through by the neighbouring windows.
+    std::vector<double> angle = vertexAngleSums(m);
+    pseudo_.assign(m.vertexCount(), 0);
+    for (uint32_t v = 0; v < m.vertexCount(); ++v)
+        pseudo_[v] = m.vertexOut[v] >= 0 && (m.boundaryVertex[v] || angle[v] > kTwoPi * (1.0 + 1e-12));
+}
+
+// ------------------------------------------------------------------ ExactWorkspace
+
+uint32_t ExactWorkspace::allocWindow() {
+    ++alive_;
+    stats_.peakWindows = std::max(stats_.peakWindows, alive_);
+    if (!freeList_.empty()) {
+        uint32_t id = freeList_.back();
+        freeList_.pop_back();
+        return id;
+    }
+    pool_.push_back(Window{});
+    pool_.back().stamp = 0;
+    return uint32_t(pool_.size() - 1);
+}
+
+void ExactWorkspace::freeWindow(uint32_t id) {
+    --alive_;
+    pool_[id].stamp++;
+    pool_[id].pending = 0;
+    freeList_.push_back(id);
+}
+
+void ExactWorkspace::push(double key, uint32_t id, uint32_t stamp) {
+    heap_.push_back({key, id, stamp});
+    std::push_heap(heap_.begin(), heap_.end(),
+                   [](const QueueEntry& a, const QueueEntry& b) { return a.key > b.key; });
+}
+
+void ExactWorkspace::relaxVertex(uint32_t v, double d) {
+    double& cur = (*dist_)[v];
+    if (d < cur) {
+        cur = d;
+        if (!isTarget_.empty() && isTarget_[v]) targetsDirty_ = true;
+        if (geo_->pseudo_[v]) push(d, v, kVertexEvent);
+    }
+}
+
+void ExactWorkspace::reset(const ExactGeodesic& geo) {
+    geo_ = &geo;
+    pool_.clear();
+    freeList_.clear();
+    heap_.clear();
+    edgeHead_.assign(geo.canonical_.size(), kNone);
+    alive_ = 0;
+    stats_ = ExactStats{};
+}
+
+// Windows from a (pseudo-)source at p, lying in `face`, onto the edges of that face.
+void ExactWorkspace::emitFromPoint(const Vec3& p, uint32_t face, double sigma) {
+    const Mesh& m = *geo_->mesh_;
+    for (int k = 0; k < 3; ++k) {
+        const int32_t h = int32_t(3 * face + k);
+        const int32_t g = m.twin[h];
+        if (g < 0) continue;
+        // Frame of g: origin tail(g) = head(h), +x towards head(g); p lies on y < 0.
+        const Vec3 o = m.positions[m.tail(g)];
+        const Vec3 e = m.positions[m.head(g)] - o;
+        const double len = length(e);
+        if (len <= 0) continue;
+        const Vec3 u = e * (1.0 / len);
+        const Vec3 r = p - o;
+        const double x = dot(r, u);
+        const double y = -length(cross(u, r));
+        insertCandidate(g, 0.0, len, x, y, sigma);
+    }
+}
+
+void ExactWorkspace::emitFromVertex(uint32_t v) {
+    const Mesh& m = *geo_->mesh_;
+    const double dv = (*dist_)[v];
+    ++stats_.pseudoSources;
+    const int32_t start = m.vertexOut[v];
+    if (start < 0) return;
+    int32_t h = start;
+    do {
+        // h runs v -> w; the edge opposite v in face(h) is next(h) (w -> u).
+        const int32_t k = Mesh::next(h);
+        const double lk = geo_->edgeLength_[geo_->edgeOf_[k]];
+        relaxVertex(m.head(h), dv + geo_->edgeLength_[geo_->edgeOf_[h]]);
+        const int32_t g = m.twin[k];
+        if (g >= 0) {
+            // v in the frame of g (reverse of k): x' = L - x, y' = -y.
+            const auto& fr = geo_->frame_[k];
+            insertCandidate(g, 0.0, lk, lk - fr.apexX, -fr.apexY, dv);
+        }
+        h = m.nextAroundVertex(h);
+    } while (h >= 0 && h != start);
+    // A boundary vertex's fan starts at its boundary half-edge: relax the last neighbour too.
+    if (h < 0) {
+        int32_t last = start;
+        for (int32_t t = start; t >= 0; t = m.nextAroundVertex(t)) last = t;
+        const int32_t p = Mesh::prev(last);  // u -> v, the other boundary edge
+        relaxVertex(m.tail(p), dv + geo_->edgeLength_[geo_->edgeOf_[p]]);
+    }
+}
+
+void ExactWorkspace::insertCandidate(int32_t g, double b0, double b1, double sx, double sy,
+                                     double sigma) {
+    const ExactGeodesic& geo = *geo_;
+    const Mesh& m = *geo.mesh_;
+    const int32_t e = geo.edgeOf_[g];
+    const double L = geo.edgeLength_[e];
+    const double eps = kPieceEps * L;
+    b0 = std::max(b0, 0.0);
+    b1 = std::min(b1, L);
+    if (!(b1 >= b0)) return;
+    sy = std::min(sy, 0.0);  // the source lies behind the edge, seen from face(g)
+    // To the canonical frame of the edge.
+    if (geo.canonical_[e] != g) {
+        double nb0 = L - b1, nb1 = L - b0;
+        b0 = nb0;
+        b1 = nb1;
+        sx = L - sx;
+        sy = -sy;
+    }
+    const int32_t hc = geo.canonical_[e];
+    const uint32_t v0 = m.tail(hc), v1 = m.head(hc);
+    std::vector<double>& dist = *dist_;
+
+    // Vertices at the window's ends: these are real path lengths whatever happens below.
+    const double d0 = windowDistance(sx, sy, sigma, b0);
+    const double d1 = windowDistance(sx, sy, sigma, b1);
+    if (b0 <= eps) relaxVertex(v0, windowDistance(sx, sy, sigma, 0.0));
+    if (b1 >= L - eps) relaxVertex(v1, windowDistance(sx, sy, sigma, L));
+    if (b1 - b0 <= eps) return;
+    // Whole window beaten by the straight path from an edge end (distance differences
+    // along the edge are monotone), or out of range: nothing of it can be a shortest path.
+    if (d1 > dist[v0] + b1 + kWinEps * d1) return;
+    if (d0 > dist[v1] + (L - b0) + kWinEps * d0) return;
+    const double minDist = windowMin(b0, b1, sx, sy, sigma);
+    if (minDist > maxDistance_) return;
+
+    // Windows overlapping [b0, b1], in order.
+    // `before` is the last window ending before b0 (kNone: the list head); ids, not
+    // pointers, because the pool may grow below.
+    uint32_t before = kNone;
+    uint32_t first = edgeHead_[e];
+    while (first != kNone && pool_[first].b1 <= b0) {
+        before = first;
+        first = pool_[first].next;
+    }
+    overlap_.clear();
+    uint32_t after = first;
+    while (after != kNone && pool_[after].b0 < b1) {
+        overlap_.push_back(after);
+        after = pool_[after].next;
+    }
+
+    // Pieces of the union of the candidate and the overlapped windows, each with its winner.
+    pieces_.clear();
+    auto addPiece = [&](double lo, double hi, uint32_t owner) {
+        if (hi <= lo) return;
+        if (!pieces_.empty() && pieces_.back().owner == owner && pieces_.back().hi >= lo) {
+            pieces_.back().hi = hi;
+            return;
+        }
+        pieces_.push_back({lo, hi, owner});
+    };
+    bool candidateWins = false;
+    double cursor = b0;
+    if (!overlap_.empty() && pool_[overlap_[0]].b0 < b0) addPiece(pool_[overlap_[0]].b0, b0, overlap_[0]);
+    for (uint32_t id : overlap_) {
+        const Window& w = pool_[id];
+        if (w.b0 > cursor) {
+            addPiece(cursor, std::min(w.b0, b1), kCandidate);
+            candidateWins = true;
+        }
+        const double lo = std::max(cursor, w.b0), hi = std::min(w.b1, b1);
+        if (hi > lo) {
+            double split[4];
+            int n = 0;
+            split[n++] = lo;
+            double roots[2];
+            int nr = crossings(sx, sy, sigma, w.sx, w.sy, w.sigma, lo, hi, roots);
+            for (int i = 0; i < nr; ++i) split[n++] = roots[i];
+            split[n++] = hi;
+            for (int i = 0; i + 1 < n; ++i) {
+                const double mid = 0.5 * (split[i] + split[i + 1]);
+                const double dc = windowDistance(sx, sy, sigma, mid);
+                const double dw = windowDistance(w.sx, w.sy, w.sigma, mid);
+                if (dc < dw - kWinEps * dw) {
+                    addPiece(split[i], split[i + 1], kCandidate);
+                    candidateWins = true;
+                } else {
+                    addPiece(split[i], split[i + 1], id);
+                }
+            }
+        }
+        cursor = std::max(cursor, hi);
+        if (w.b1 > b1) addPiece(b1, w.b1, id);
+    }
+    if (cursor < b1) {
+        addPiece(cursor, b1, kCandidate);
+        candidateWins = true;
+    }
+    if (!candidateWins) return;
+    bool anyLarge = false;
+    for (const Piece& p : pieces_)
+        if (p.owner == kCandidate && p.hi - p.lo > eps) anyLarge = true;
+    if (!anyLarge) return;
+
+    // Rebuild the list segment: the first piece of an old window reuses it, later pieces
+    // of the same window are copies (queued if the original still waits in the queue).
+    for (uint32_t id : overlap_) pool_[id].next = kCandidate;  // marks "not reused yet"
+    uint32_t head = kNone, tail = kNone;
+    auto append = [&](uint32_t id) {
+        if (tail == kNone) head = id;
+        else pool_[tail].next = id;
+        tail = id;
+    };
+    for (const Piece& p : pieces_) {
+        if (p.hi - p.lo <= eps) continue;
+        if (p.owner == kCandidate) {
+            uint32_t id = allocWindow();
+            Window& w = pool_[id];
+            w.b0 = p.lo;
+            w.b1 = p.hi;
+            w.sx = sx;
+            w.sy = sy;
+            w.sigma = sigma;
+            w.h = g;
+            w.pending = 1;
+            w.next = kNone;
+            ++stats_.windowsCreated;
+            push(windowMin(w.b0, w.b1, sx, sy, sigma), id, w.stamp);
+            append(id);
+        } else if (pool_[p.owner].next == kCandidate) {
+            Window& w = pool_[p.owner];
+            w.b0 = p.lo;
+            w.b1 = p.hi;
+            w.next = kNone;
+            append(p.owner);
+        } else {
+            uint32_t id = allocWindow();
+            Window copy = pool_[p.owner];
+            copy.b0 = p.lo;
+            copy.b1 = p.hi;
+            copy.next = kNone;
+            copy.stamp = pool_[id].stamp;
+            pool_[id] = copy;
+            if (copy.pending) push(windowMin(copy.b0, copy.b1, copy.sx, copy.sy, copy.sigma), id, copy.stamp);
+            append(id);
+        }
+    }
+    for (uint32_t id : overlap_)
+        if (pool_[id].next == kCandidate) freeWindow(id);
+    uint32_t& link = before == kNone ? edgeHead_[e] : pool_[before].next;
+    if (tail == kNone) {
+        link = after;
+    } else {
+        link = head;
+        pool_[tail].next = after;
+    }
+}
+
+void ExactWorkspace::propagate(uint32_t id) {
+    const ExactGeodesic& geo = *geo_;
+    const Mesh& m = *geo.mesh_;
+    Window w = pool_[id];
+    pool_[id].pending = 0;
+    ++stats_.windowsPropagated;
+    const int32_t h = w.h;
+    const int32_t e = geo.edgeOf_[h];
+    const double L = geo.edgeLength_[e];
+    // Into the frame of h: tail(h) at the origin, the face on y > 0, the source on y < 0.
+    double b0 = w.b0, b1 = w.b1, sx = w.sx, sy = w.sy;
+    if (geo.canonical_[e] != h) {
+        b0 = L - w.b1;
+        b1 = L - w.b0;
+        sx = L - w.sx;
+        sy = -w.sy;
+    }
+    if (-sy <= kGrazeEps * L) return;  // rays along the edge enter neither face
+    const double qx = geo.frame_[h].apexX, qy = geo.frame_[h].apexY;
+    if (qy <= 0) return;  // degenerate face
+    // Where the ray from the source through the apex crosses the edge line.
+    const double xa = sx + (qx - sx) * (-sy) / (qy - sy);
+    const double tol = 1e-9 * L;
+    if (xa >= b0 - tol && xa <= b1 + tol) {
+        const double dx = qx - sx, dy = qy - sy;
+        const double da = w.sigma + std::sqrt(dx * dx + dy * dy);
+        if (da <= maxDistance_) relaxVertex(m.apex(h), da);
+    }
+    // Left edge: tail(h) -> apex. Its outer half-edge runs the same way (origin tail(h)).
+    if (xa > b0) {
+        const int32_t g = m.twin[Mesh::prev(h)];
+        const double lenL = std::sqrt(qx * qx + qy * qy);
+        auto alphaAt = [&](double b) {
+            double den = sy * qx + (b - sx) * qy;
+            double a = den != 0.0 ? b * sy / den : 1.0;
+            return std::min(std::max(a, 0.0), 1.0);
+        };
+        const double aLo = alphaAt(b0);
+        const double aHi = xa <= b1 ? 1.0 : alphaAt(b1);
+        const double ux = qx / lenL, uy = qy / lenL;
+        const double nsx = sx * ux + sy * uy;
+        const double nsy = cross2(ux, uy, sx, sy);
+        if (g >= 0) {
+            insertCandidate(g, aLo * lenL, aHi * lenL, nsx, nsy, w.sigma);
+        } else {  // boundary: no face beyond, but its end vertices can still be reached
+            if (aLo <= kPieceEps) relaxVertex(m.tail(h), windowDistance(nsx, nsy, w.sigma, 0.0));
+            if (aHi >= 1.0 - kPieceEps) relaxVertex(m.apex(h), windowDistance(nsx, nsy, w.sigma, lenL));
+        }
+    }
+    // Right edge: apex -> head(h); its outer half-edge starts at the apex.
+    if (xa < b1) {
+        const int32_t g = m.twin[Mesh::next(h)];
+        const double ex = L - qx, ey = -qy;  // apex -> head(h)
+        const double lenR = std::sqrt(ex * ex + ey * ey);
+        auto betaAt = [&](double b) {  // 0 at head(h), 1 at the apex
+            double den = (b - sx) * qy + sy * (qx - L);
+            double t = den != 0.0 ? sy * (b - L) / den : 1.0;
+            return std::min(std::max(t, 0.0), 1.0);
+        };
+        const double tHi = xa >= b0 ? 1.0 : betaAt(b0);
+        const double tLo = betaAt(b1);
+        const double ux = ex / lenR, uy = ey / lenR;
+        const double rx = sx - qx, ry = sy - qy;
+        const double nsx = rx * ux + ry * uy;
+        const double nsy = cross2(ux, uy, rx, ry);
+        const double lo = (1.0 - tHi) * lenR, hi = (1.0 - tLo) * lenR;
+        if (g >= 0) {
+            insertCandidate(g, lo, hi, nsx, nsy, w.sigma);
+        } else {
+            if (tHi >= 1.0 - kPieceEps) relaxVertex(m.apex(h), windowDistance(nsx, nsy, w.sigma, 0.0));
+            if (tLo <= kPieceEps) relaxVertex(m.head(h), windowDistance(nsx, nsy, w.sigma, lenR));
+        }
+    }
+}
+
+void ExactWorkspace::run(const ExactGeodesic& geo, const ExactQuery& query,
+                         std::vector<double>& distances, ExactStats* stats) {
+    const Mesh& m = *geo.mesh_;
+    const uint32_t nv = m.vertexCount();
+    for (const GeodesicSource& s : query.sources) {
+        if (s.isVertex && s.vertex >= nv)
+            throw std::invalid_argument("source vertex " + std::to_string(s.vertex) + " out of range");
+        if (!s.isVertex) {
+            const SurfacePoint& p = s.point;
+            if (p.face >= m.faceCount())
+                throw std::invalid_argument("source face " + std::to_string(p.face) + " out of range");
+            double sum = p.bary[0] + p.bary[1] + p.bary[2];
+            for (double b : p.bary)
+                if (!std::isfinite(b) || b < -1e-9) throw std::invalid_argument("invalid barycentric coordinates");
+            if (std::fabs(sum - 1.0) > 1e-6) throw std::invalid_argument("barycentric coordinates must sum to 1");
+        }
+    }
+    for (uint32_t t : query.targets)
+        if (t >= nv) throw std::invalid_argument("target vertex " + std::to_string(t) + " out of range");
+
+    reset(geo);
+    distances.assign(nv, kInfinity);
+    dist_ = &distances;
+    maxDistance_ = query.maxDistance;
+    isTarget_.assign(query.targets.empty() ? 0 : nv, 0);
+    for (uint32_t t : query.targets) isTarget_[t] = 1;
+
+    for (const GeodesicSource& s : query.sources) {
+        if (s.isVertex) {
+            distances[s.vertex] = 0.0;
+            push(0.0, s.vertex, kVertexEvent);
+            continue;
+        }
+        const SurfacePoint& sp = s.point;
+        // Snap to a vertex when the point is one; emit into every face that contains it.
+        int zero = 0, one = -1;
+        for (int k = 0; k < 3; ++k) {
+            if (std::fabs(sp.bary[k]) <= 1e-12) ++zero;
+            if (std::fabs(sp.bary[k] - 1.0) <= 1e-12) one = k;
+        }
+        if (one >= 0) {
+            uint32_t v = m.faces[sp.face][one];
+            distances[v] = 0.0;
+            push(0.0, v, kVertexEvent);
+            continue;
+        }
+        Vec3 p{0, 0, 0};
+        for (int k = 0; k < 3; ++k) p = p + m.positions[m.faces[sp.face][k]] * sp.bary[k];
+        for (int k = 0; k < 3; ++k) relaxVertex(m.faces[sp.face][k], distance(p, m.positions[m.faces[sp.face][k]]));
+        emitFromPoint(p, sp.face, 0.0);
+        if (zero == 1) {  // on an edge: also the face across it
+            for (int k = 0; k < 3; ++k) {
+                if (std::fabs(sp.bary[(k + 2) % 3]) > 1e-12) continue;  // edge k: corners k, k+1
+                int32_t t = m.twin[3 * sp.face + k];
+                if (t < 0) continue;
+                uint32_t f2 = uint32_t(Mesh::faceOf(t));
+                relaxVertex(m.apex(t), distance(p, m.positions[m.apex(t)]));
+                emitFromPoint(p, f2, 0.0);
+            }
+        }
+    }
+
+    double targetBound = kInfinity;
+    targetsDirty_ = true;
+    auto cmp = [](const QueueEntry& a, const QueueEntry& b) { return a.key > b.key; };
+    while (!heap_.empty()) {
+        const QueueEntry top = heap_.front();
+        if (top.key > maxDistance_) break;
+        if (!query.targets.empty()) {
+            if (targetsDirty_) {
+                targetBound = 0.0;
+                for (uint32_t t : query.targets) targetBound = std::max(targetBound, distances[t]);
+                targetsDirty_ = false;
+            }
+            if (top.key >= targetBound) break;
+        }
+        std::pop_heap(heap_.begin(), heap_.end(), cmp);
+        heap_.pop_back();
+        if (top.stamp == kVertexEvent) {
+            if (distances[top.id] == top.key) emitFromVertex(top.id);
+        } else {
+            const Window& w = pool_[top.id];
+            if (w.stamp == top.stamp && w.pending) propagate(top.id);
+        }
+    }
+    if (query.maxDistance < kInfinity)
+        for (double& d : distances)
+            if (d > query.maxDistance) d = kInfinity;
+    if (stats) *stats = stats_;
+    dist_ = nullptr;
+}
+
+// ------------------------------------------------------------------ batch and baseline
+
+std::vector<std::vector<double>> exactDistancesBatch(const ExactGeodesic& geo,
+                                                     const std::vector<uint32_t>& sources,
+                                                     double maxDistance) {
+    std::vector<std::vector<double>> out(sources.size());
+    tbb::enumerable_thread_specific<ExactWorkspace> workspaces;
+    tbb::parallel_for(size_t(0), sources.size(), [&](size_t i) {
+        ExactWorkspace& ws = workspaces.local();
+        ExactQuery q;
+        q.sources.push_back(GeodesicSource::atVertex(sources[i]));
+        q.maxDistance = maxDistance;
+        ws.run(geo, q, out[i]);
+    });
+    return out;
+}
+
+void edgeDijkstra(const Mesh& mesh, uint32_t source, std::vector<double>& distances, int64_t target) {
+    const uint32_t nv = mesh.vertexCount();
+    if (source >= nv) throw std::invalid_argument("source vertex out of range");
+    distances.assign(nv, kInfinity);
+    using Item = std::pair<double, uint32_t>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    distances[source] = 0.0;
+    queue.push({0.0, source});
+    while (!queue.empty()) {
+        auto [d, v] = queue.top();
+        queue.pop();
+        if (d > distances[v]) continue;
+        if (int64_t(v) == target) break;
+        const int32_t start = mesh.vertexOut[v];
+        if (start < 0) continue;
+        auto relax = [&](uint32_t w) {
+            double nd = d + distance(mesh.positions[v], mesh.positions[w]);
+            if (nd < distances[w]) {
+                distances[w] = nd;
+                queue.push({nd, w});
+            }
+        };
+        int32_t h = start, last = start;
+        do {
+            relax(mesh.head(h));
+            last = h;
+            h = mesh.nextAroundVertex(h);
+        } while (h >= 0 && h != start);
+        if (h < 0) relax(mesh.tail(Mesh::prev(last)));
+    }
+}
+
+}  // namespace vorogeo

@@ -151,6 +151,18 @@ void ExactGeodesic::precompute() {
             if (m.twin[h] >= 0) edgeOf_[m.twin[h]] = id;
         }
     }
+    double sumLength = 0.0;
+    for (double l : edgeLength_) sumLength += l;
+    Vec3 lo{kInfinity, kInfinity, kInfinity}, hi{-kInfinity, -kInfinity, -kInfinity};
+    for (const Vec3& p : m.positions) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    const double meanEdge = edgeLength_.empty() ? 1.0 : sumLength / double(edgeLength_.size());
+    queueBucketWidth_ = std::max(0.5 * meanEdge, 1e-300);
+    // Geodesic distances rarely exceed a few bounding-box diagonals.
+    const double reach = m.positions.empty() ? 1.0 : 4.0 * distance(lo, hi) + meanEdge;
+    queueBuckets_ = size_t(std::min(reach / queueBucketWidth_, 1e6)) + 2;
     // Shortest paths bend only at saddle vertices (angle sum above 2*pi) and at boundary
     // vertices; flat vertices are let through by the neighbouring windows.
     std::vector<double> angle = vertexAngleSums(m);
@@ -182,9 +194,7 @@ void ExactWorkspace::freeWindow(uint32_t id) {
 }
 
 void ExactWorkspace::push(double key, uint32_t id, uint32_t stamp) {
-    heap_.push_back({key, id, stamp});
-    std::push_heap(heap_.begin(), heap_.end(),
-                   [](const QueueEntry& a, const QueueEntry& b) { return a.key > b.key; });
+    queue_.push({key, id, stamp});
 }
 
 void ExactWorkspace::relaxVertex(uint32_t v, double d) {
@@ -200,7 +210,9 @@ void ExactWorkspace::reset(const ExactGeodesic& geo) {
     geo_ = &geo;
     pool_.clear();
     freeList_.clear();
-    heap_.clear();
+    // Bucket width: a fraction of the mean edge length, so a bucket holds about one
+    // wavefront step; the last bucket catches whatever lies beyond the expected range.
+    queue_.reset(geo.queueBucketWidth_, geo.queueBuckets_);
     edgeHead_.assign(geo.canonical_.size(), kNone);
     alive_ = 0;
     stats_ = ExactStats{};
@@ -553,9 +565,8 @@ void ExactWorkspace::run(const ExactGeodesic& geo, const ExactQuery& query,
 
     double targetBound = kInfinity;
     targetsDirty_ = true;
-    auto cmp = [](const QueueEntry& a, const QueueEntry& b) { return a.key > b.key; };
-    while (!heap_.empty()) {
-        const QueueEntry top = heap_.front();
+    while (!queue_.empty()) {
+        const QueueEntry top = queue_.top();
         if (top.key > maxDistance_) break;
         if (!query.targets.empty()) {
             if (targetsDirty_) {
@@ -565,8 +576,7 @@ void ExactWorkspace::run(const ExactGeodesic& geo, const ExactQuery& query,
             }
             if (top.key >= targetBound) break;
         }
-        std::pop_heap(heap_.begin(), heap_.end(), cmp);
-        heap_.pop_back();
+        queue_.pop();
         if (top.stamp == kVertexEvent) {
             if (distances[top.id] == top.key) emitFromVertex(top.id);
         } else {
@@ -579,6 +589,12 @@ void ExactWorkspace::run(const ExactGeodesic& geo, const ExactQuery& query,
             if (d > query.maxDistance) d = kInfinity;
     if (stats) *stats = stats_;
     dist_ = nullptr;
+}
+
+size_t ExactWorkspace::memoryBytes() const {
+    return pool_.capacity() * sizeof(Window) + freeList_.capacity() * sizeof(uint32_t) +
+           edgeHead_.capacity() * sizeof(uint32_t) + queue_.memoryBytes() +
+           overlap_.capacity() * sizeof(uint32_t) + pieces_.capacity() * sizeof(Piece) + isTarget_.capacity();
 }
 
 // ------------------------------------------------------------------ batch and baseline

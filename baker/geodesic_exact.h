@@ -14,6 +14,7 @@
 #include <memory>
 #include <vector>
 
+#include "bucket_queue.h"
 #include "mesh.h"
 
 namespace vorogeo {
@@ -93,6 +94,8 @@ private:
     std::vector<int32_t> canonical_;    // edge -> its canonical half-edge
     std::vector<double> edgeLength_;    // per edge
     std::vector<uint8_t> pseudo_;       // per vertex
+    double queueBucketWidth_ = 1.0;
+    size_t queueBuckets_ = 1;
 };
 
 // Per-thread scratch memory. Reusing one workspace for many runs makes the hot loop
@@ -103,6 +106,9 @@ public:
     // beyond maxDistance). Throws std::invalid_argument on an out-of-range source/target.
     void run(const ExactGeodesic& geo, const ExactQuery& query, std::vector<double>& distances,
              ExactStats* stats = nullptr);
+
+    // Bytes of scratch memory the workspace holds (it keeps its buffers between runs).
+    size_t memoryBytes() const;
 
 private:
     struct Window {
@@ -139,7 +145,7 @@ private:
     std::vector<Window> pool_;
     std::vector<uint32_t> freeList_;
     std::vector<uint32_t> edgeHead_;
-    std::vector<QueueEntry> heap_;
+    BucketQueue<QueueEntry> queue_;
     std::vector<uint32_t> overlap_;
     std::vector<Piece> pieces_;
     std::vector<double>* dist_ = nullptr;

@@ -12,6 +12,8 @@ namespace vorogeo::tools {
 // (keep in the same order as the table below)
 int runInfo(int argc, char** argv);
 int runDemo(int argc, char** argv);
+int runExact(int argc, char** argv);
+int runBenchExact(int argc, char** argv);
 }  // namespace vorogeo::tools
 
 namespace {
@@ -21,6 +23,8 @@ using vorogeo::tools::Command;
 const Command kCommands[] = {
     {"info", "load and validate a mesh, print its statistics", vorogeo::tools::runInfo},
     {"demo", "run the pipeline on a built-in mesh", vorogeo::tools::runDemo},
+    {"exact", "exact geodesic distances (MMP); check against golden pairs", vorogeo::tools::runExact},
+    {"bench-exact", "benchmark the exact engine against edge Dijkstra", vorogeo::tools::runBenchExact},
     {nullptr, nullptr, nullptr},  // sentinel, keeps the array non-empty
 };
 

@@ -1,0 +1,150 @@
+// vorogeo bench-exact: single-source all-destinations time of the exact engine next to
+// plain Dijkstra on the edge graph, in the same run, plus windows and memory; and the
+// time per source on patches of the sizes the baker uses.
+#include <cstdio>
+#include <dirent.h>
+#include <algorithm>
+#include <queue>
+#include <string>
+#include <vector>
+
+#include "cli.h"
+#include "generators.h"
+#include "geodesic_exact.h"
+#include "timing.h"
+#include "tool_mesh.h"
+
+namespace vorogeo::tools {
+
+namespace {
+
+const char* kUsage =
+    "usage: vorogeo bench-exact [MESH ...] [--meshes DIR] [--sources N] [--seed S] [--json]\n"
+    "  For each mesh (default: every .ply in ../shared/meshes): median single-source time of\n"
+    "  the exact engine and of Dijkstra on the edge graph over the same N sources (1 thread),\n"
+    "  windows per source, workspace memory, and exact time per source on patches of 200,\n"
+    "  1,000 and 5,000 vertices (setup included).\n";
+
+// Faces of a patch grown breadth-first from `seedFace` until it has `vertices` vertices.
+std::vector<uint32_t> growPatch(const Mesh& mesh, uint32_t seedFace, uint32_t vertices) {
+    std::vector<uint8_t> inPatch(mesh.faceCount(), 0), vertexSeen(mesh.vertexCount(), 0);
+    std::vector<uint32_t> faces;
+    std::queue<uint32_t> frontier;
+    frontier.push(seedFace);
+    inPatch[seedFace] = 1;
+    uint32_t count = 0;
+    while (!frontier.empty() && count < vertices) {
+        uint32_t f = frontier.front();
+        frontier.pop();
+        faces.push_back(f);
+        for (int k = 0; k < 3; ++k) {
+            uint32_t v = mesh.faces[f][k];
+            if (!vertexSeen[v]) {
+                vertexSeen[v] = 1;
+                ++count;
+            }
+            int32_t t = mesh.twin[3 * f + k];
+            if (t >= 0 && !inPatch[Mesh::faceOf(t)]) {
+                inPatch[Mesh::faceOf(t)] = 1;
+                frontier.push(uint32_t(Mesh::faceOf(t)));
+            }
+        }
+    }
+    return faces;
+}
+
+std::vector<std::string> defaultMeshes(const std::string& dir) {
+    std::vector<std::string> out;
+    if (DIR* d = opendir(dir.c_str())) {
+        while (dirent* e = readdir(d)) {
+            std::string name = e->d_name;
+            if (name.size() > 4 && name.compare(name.size() - 4, 4, ".ply") == 0) out.push_back(dir + "/" + name);
+        }
+        closedir(d);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+}  // namespace
+
+int runBenchExact(int argc, char** argv) {
+    cli::Args args(argc, argv, {"--meshes", "--sources", "--seed"}, {"--json", "--help"});
+    if (args.flag("--help")) {
+        std::printf("%s", kUsage);
+        return 0;
+    }
+    const long long nSources = args.integer("--sources", 5);
+    if (nSources < 1) throw cli::UsageError("--sources must be >= 1");
+    std::vector<std::string> meshes = args.positional();
+    if (meshes.empty()) {
+        const std::string dir = args.str("--meshes", "../shared/meshes");
+        meshes = defaultMeshes(dir);
+        if (meshes.empty()) {
+            std::fprintf(stderr, "vorogeo bench-exact: no meshes given and no .ply files in %s\n", dir.c_str());
+            return 1;
+        }
+    }
+    const bool json = args.flag("--json");
+    if (!json)
+        std::printf("%-22s %8s %11s %11s %7s %11s %9s %9s %9s %9s\n", "mesh", "V", "exact_ms", "dijkstra_ms", "ratio",
+                    "windows", "ws_MB", "p200_ms", "p1000_ms", "p5000_ms");
+    for (const std::string& path : meshes) {
+        Mesh mesh;
+        if (!loadMeshForCommand("bench-exact", path, false, mesh)) return 1;
+        Random rng(uint64_t(args.integer("--seed", 1)));
+        std::vector<uint32_t> sources;
+        for (long long i = 0; i < nSources; ++i) sources.push_back(uint32_t(rng.uniform() * mesh.vertexCount()));
+
+        const ExactGeodesic geo(mesh);
+        ExactWorkspace ws;
+        std::vector<double> dist, exactMs, dijkstraMs;
+        double windows = 0;
+        for (uint32_t s : sources) {  // alternate the two methods so load affects both alike
+            ExactQuery q;
+            q.sources.push_back(GeodesicSource::atVertex(s));
+            ExactStats stats;
+            Stopwatch a;
+            ws.run(geo, q, dist, &stats);
+            exactMs.push_back(a.seconds() * 1e3);
+            windows += double(stats.windowsCreated);
+            Stopwatch b;
+            edgeDijkstra(mesh, s, dist);
+            dijkstraMs.push_back(b.seconds() * 1e3);
+        }
+        double patchMs[3] = {0, 0, 0};
+        const uint32_t sizes[3] = {200, 1000, 5000};
+        for (int k = 0; k < 3; ++k) {
+            if (sizes[k] > mesh.vertexCount()) continue;
+            std::vector<double> times;
+            for (int rep = 0; rep < 10; ++rep) {
+                auto faces = growPatch(mesh, uint32_t(rng.uniform() * mesh.faceCount()), sizes[k]);
+                Stopwatch c;
+                ExactGeodesic patch(mesh, faces);
+                ExactQuery q;
+                q.sources.push_back(GeodesicSource::atVertex(uint32_t(rng.uniform() * patch.vertexCount())));
+                ws.run(patch, q, dist);
+                times.push_back(c.seconds() * 1e3);
+            }
+            patchMs[k] = percentile(times, 50);
+        }
+        const double e50 = percentile(exactMs, 50), d50 = percentile(dijkstraMs, 50);
+        const double wsMb = double(ws.memoryBytes()) / (1024.0 * 1024.0);
+        std::string name = path.substr(path.find_last_of('/') + 1);
+        if (json)
+            std::printf("{\"mesh\":\"%s\",\"vertices\":%u,\"sources\":%zu,\"exact_ssad_p50_ms\":%.3f,"
+                        "\"dijkstra_ssad_p50_ms\":%.3f,\"exact_over_dijkstra\":%.2f,\"windows_per_source\":%.0f,"
+                        "\"workspace_mb\":%.1f,\"peak_rss_mb\":%.1f,\"patch200_ms\":%.3f,\"patch1000_ms\":%.3f,"
+                        "\"patch5000_ms\":%.3f}\n",
+                        name.c_str(), mesh.vertexCount(), sources.size(), e50, d50, e50 / d50,
+                        windows / double(sources.size()), wsMb, peakRssMb(), patchMs[0], patchMs[1], patchMs[2]);
+        else
+            std::printf("%-22s %8u %11.2f %11.2f %7.1f %11.0f %9.1f %9.3f %9.3f %9.3f\n", name.c_str(),
+                        mesh.vertexCount(), e50, d50, e50 / d50, windows / double(sources.size()), wsMb, patchMs[0],
+                        patchMs[1], patchMs[2]);
+        std::fflush(stdout);
+    }
+    return 0;
+}
+
+}  // namespace vorogeo::tools

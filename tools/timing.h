@@ -1,0 +1,34 @@
+// Timing helpers for the evaluation and benchmark commands: a stopwatch and percentiles.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+namespace vorogeo::tools {
+
+class Stopwatch {
+public:
+    Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+    double seconds() const {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
+
+private:
+    std::chrono::steady_clock::time_point start_;
+};
+
+// Nearest-rank percentile (p in [0, 100]) of the values; 0 for an empty set.
+inline double percentile(std::vector<double> values, double p) {
+    if (values.empty()) return 0.0;
+    std::sort(values.begin(), values.end());
+    size_t rank = size_t(std::ceil(p / 100.0 * double(values.size())));
+    rank = std::min(std::max<size_t>(rank, 1), values.size());
+    return values[rank - 1];
+}
+
+// Peak resident set size of this process so far, in megabytes.
+double peakRssMb();
+
+}  // namespace vorogeo::tools

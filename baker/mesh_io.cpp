@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include <sys/stat.h>
+
 #include "mesh_check.h"
 #include "mesh_repair.h"
 #include "mesh_soup.h"
@@ -25,13 +27,18 @@ bool readFile(const std::string& path, std::string& data, std::string& error) {
         error = std::string("cannot open file (") + std::strerror(errno) + ")";
         return false;
     }
-    bool ok = std::fseek(f, 0, SEEK_END) == 0;
-    const long size = ok ? std::ftell(f) : -1;
-    ok = ok && size >= 0 && std::fseek(f, 0, SEEK_SET) == 0;
-    if (ok) {
-        data.resize(size_t(size));
-        ok = std::fread(data.data(), 1, data.size(), f) == data.size();
+    struct stat info;
+    if (fstat(fileno(f), &info) == 0 && S_ISDIR(info.st_mode)) {
+        std::fclose(f);
+        error = "cannot read file (it is a directory)";
+        return false;
     }
+    // Read in chunks rather than trusting a size: pipes and devices have none.
+    if (fstat(fileno(f), &info) == 0 && S_ISREG(info.st_mode)) data.reserve(size_t(info.st_size));
+    char chunk[1 << 16];
+    size_t n;
+    while ((n = std::fread(chunk, 1, sizeof chunk, f)) > 0) data.append(chunk, n);
+    const bool ok = !std::ferror(f);
     if (!ok) error = std::string("cannot read file (") + std::strerror(errno ? errno : EIO) + ")";
     std::fclose(f);
     return ok;
@@ -120,7 +127,7 @@ bool soupToMesh(PolygonSoup& soup, Mesh& mesh, std::vector<uint32_t>& sourceFace
                           " with more than 3 vertices (now " + std::to_string(mesh.faceCount()) + " triangles)");
     if (fallbacks)
         notices.push_back(plural(fallbacks, "polygon", "polygons") +
-                          " had no proper ear (self-intersecting or degenerate) and were fan-triangulated");
+                           " were fan-triangulated (no proper ear: self-intersecting, degenerate or very large)");
     if (shortPolygons)
         notices.push_back(plural(shortPolygons, "face has", "faces have") + " fewer than 3 vertices");
     return true;
@@ -252,8 +259,9 @@ LoadReport loadMesh(const std::string& path, const LoadOptions& options, Mesh& o
     std::vector<std::string> notices;
     if (format == Format::Unknown) {
         if (sniffed == Format::Unknown) {
-            report.error = path + ": unknown mesh format (extension '" + ext +
-                           "' is not .obj/.ply/.off/.stl and the content is not recognised as any of them)";
+            report.error = path + ": unknown mesh format (" +
+                           (ext.empty() ? std::string("no file extension") : "extension '" + ext + "'") +
+                           ", and the content is not recognised as OBJ, PLY, OFF or STL)";
             return report;
         }
         format = sniffed;

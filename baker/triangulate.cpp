@@ -5,6 +5,8 @@
 namespace vorogeo {
 namespace {
 
+constexpr uint32_t kMaxEarClippingVertices = 2000;
+
 struct P2 {
     double u, v;
 };
@@ -44,7 +46,8 @@ bool triangulatePolygon(const std::vector<Vec3>& positions, const uint32_t* poly
 
     std::vector<uint32_t> left(n);
     for (uint32_t i = 0; i < n; ++i) left[i] = i;
-    bool earsOnly = ax + ay + az > 0;
+    // Ear clipping is quadratic: huge polygons (never seen in real meshes) get a fan.
+    bool earsOnly = ax + ay + az > 0 && n <= kMaxEarClippingVertices;
     uint32_t i = 0, misses = 0;
     while (earsOnly && left.size() > 3) {
         const uint32_t m = uint32_t(left.size());

@@ -122,6 +122,8 @@ TEST_CASE("file-level errors name the file and the problem", "[validation][io]")
         return r.error;
     };
     CHECK_THAT(errorOf(dir.file("missing.obj")), Catch::Contains("cannot open file"));
+    std::filesystem::create_directories(dir.file("folder.obj"));
+    CHECK_THAT(errorOf(dir.file("folder.obj")), Catch::Contains("it is a directory"));
     CHECK_THAT(errorOf(dir.write("mesh.xyz", "hello world\n")), Catch::Contains("unknown mesh format"));
     CHECK_THAT(errorOf(dir.write("fake.ply", "v 0 0 0\n")), Catch::Contains("not a PLY file"));
     CHECK_THAT(errorOf(dir.write("bad.obj", "v 0 zero 0\nf 1 2 3\n")), Catch::Contains("line 1") &&

@@ -15,7 +15,7 @@ namespace {
 
 constexpr uint32_t kNone = 0xffffffffu;
 constexpr uint32_t kCandidate = 0xfffffffeu;
-constexpr uint32_t kVertexEvent = 0xffffffffu;  // queue-entry stamp marking a vertex event
+constexpr uint32_t kVertexEvent = 0xffffffffu;  // queue-entry ticket marking a vertex event
 constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 // Relative tolerances, as fractions of the edge length (positions) or of the distance.
@@ -182,19 +182,20 @@ uint32_t ExactWorkspace::allocWindow() {
         return id;
     }
     pool_.push_back(Window{});
-    pool_.back().stamp = 0;
+    ticket_.push_back(0);
     return uint32_t(pool_.size() - 1);
 }
 
 void ExactWorkspace::freeWindow(uint32_t id) {
     --alive_;
-    pool_[id].stamp++;
-    pool_[id].pending = 0;
+    ticket_[id] = 0;
     freeList_.push_back(id);
 }
 
-void ExactWorkspace::push(double key, uint32_t id, uint32_t stamp) {
-    queue_.push({key, id, stamp});
+void ExactWorkspace::schedule(uint32_t id) {
+    const Window& w = pool_[id];
+    ticket_[id] = nextTicket_++;
+    queue_.push({windowMin(w.b0, w.b1, w.sx, w.sy, w.sigma), id, ticket_[id]});
 }
 
 void ExactWorkspace::relaxVertex(uint32_t v, double d) {
@@ -202,13 +203,15 @@ void ExactWorkspace::relaxVertex(uint32_t v, double d) {
     if (d < cur) {
         cur = d;
         if (!isTarget_.empty() && isTarget_[v]) targetsDirty_ = true;
-        if (geo_->pseudo_[v]) push(d, v, kVertexEvent);
+        if (geo_->pseudo_[v]) queue_.push({d, v, kVertexEvent});
     }
 }
 
 void ExactWorkspace::reset(const ExactGeodesic& geo) {
     geo_ = &geo;
     pool_.clear();
+    ticket_.clear();
+    nextTicket_ = 1;
     freeList_.clear();
     // Bucket width: a fraction of the mean edge length, so a bucket holds about one
     // wavefront step; the last bucket catches whatever lies beyond the expected range.
@@ -392,10 +395,9 @@ void ExactWorkspace::insertCandidate(int32_t g, double b0, double b1, double sx,
             w.sy = sy;
             w.sigma = sigma;
             w.h = g;
-            w.pending = 1;
             w.next = kNone;
             ++stats_.windowsCreated;
-            push(windowMin(w.b0, w.b1, sx, sy, sigma), id, w.stamp);
+            schedule(id);
             append(id);
         } else if (pool_[p.owner].next == kCandidate) {
             Window& w = pool_[p.owner];
@@ -409,9 +411,8 @@ void ExactWorkspace::insertCandidate(int32_t g, double b0, double b1, double sx,
             copy.b0 = p.lo;
             copy.b1 = p.hi;
             copy.next = kNone;
-            copy.stamp = pool_[id].stamp;
             pool_[id] = copy;
-            if (copy.pending) push(windowMin(copy.b0, copy.b1, copy.sx, copy.sy, copy.sigma), id, copy.stamp);
+            if (ticket_[p.owner]) schedule(id);  // the original still waits: so does its copy
             append(id);
         }
     }
@@ -430,7 +431,7 @@ void ExactWorkspace::propagate(uint32_t id) {
     const ExactGeodesic& geo = *geo_;
     const Mesh& m = *geo.mesh_;
     Window w = pool_[id];
-    pool_[id].pending = 0;
+    ticket_[id] = 0;
     ++stats_.windowsPropagated;
     const int32_t h = w.h;
     const int32_t e = geo.edgeOf_[h];
@@ -531,7 +532,7 @@ void ExactWorkspace::run(const ExactGeodesic& geo, const ExactQuery& query,
     for (const GeodesicSource& s : query.sources) {
         if (s.isVertex) {
             distances[s.vertex] = 0.0;
-            push(0.0, s.vertex, kVertexEvent);
+            queue_.push({0.0, s.vertex, kVertexEvent});
             continue;
         }
         const SurfacePoint& sp = s.point;
@@ -544,7 +545,7 @@ void ExactWorkspace::run(const ExactGeodesic& geo, const ExactQuery& query,
         if (one >= 0) {
             uint32_t v = m.faces[sp.face][one];
             distances[v] = 0.0;
-            push(0.0, v, kVertexEvent);
+            queue_.push({0.0, v, kVertexEvent});
             continue;
         }
         Vec3 p{0, 0, 0};
@@ -566,22 +567,22 @@ void ExactWorkspace::run(const ExactGeodesic& geo, const ExactQuery& query,
     double targetBound = kInfinity;
     targetsDirty_ = true;
     while (!queue_.empty()) {
-        const QueueEntry top = queue_.top();
-        if (top.key > maxDistance_) break;
+        const double bound = queue_.lowerBound();  // nothing left can get closer than this
+        if (bound > maxDistance_) break;
         if (!query.targets.empty()) {
             if (targetsDirty_) {
                 targetBound = 0.0;
                 for (uint32_t t : query.targets) targetBound = std::max(targetBound, distances[t]);
                 targetsDirty_ = false;
             }
-            if (top.key >= targetBound) break;
+            if (bound >= targetBound) break;
         }
+        const QueueEntry top = queue_.top();
         queue_.pop();
-        if (top.stamp == kVertexEvent) {
+        if (top.ticket == kVertexEvent) {
             if (distances[top.id] == top.key) emitFromVertex(top.id);
         } else {
-            const Window& w = pool_[top.id];
-            if (w.stamp == top.stamp && w.pending) propagate(top.id);
+            if (ticket_[top.id] == top.ticket) propagate(top.id);
         }
     }
     if (query.maxDistance < kInfinity)
@@ -592,7 +593,7 @@ void ExactWorkspace::run(const ExactGeodesic& geo, const ExactQuery& query,
 }
 
 size_t ExactWorkspace::memoryBytes() const {
-    return pool_.capacity() * sizeof(Window) + freeList_.capacity() * sizeof(uint32_t) +
+    return pool_.capacity() * sizeof(Window) + (ticket_.capacity() + freeList_.capacity()) * sizeof(uint32_t) +
            edgeHead_.capacity() * sizeof(uint32_t) + queue_.memoryBytes() +
            overlap_.capacity() * sizeof(uint32_t) + pieces_.capacity() * sizeof(Piece) + isTarget_.capacity();
 }

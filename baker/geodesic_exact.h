@@ -117,13 +117,11 @@ private:
         double sigma;   // distance from the real source to the pseudo-source
         int32_t h;      // the window's paths continue into face(h)
         uint32_t next;  // next window along the same edge
-        uint32_t stamp; // changes when the slot is freed, invalidating queue entries
-        uint8_t pending;
-    };
+    };  // 48 bytes: the run is memory-bound, so bookkeeping lives in ticket_ instead
     struct QueueEntry {
         double key;
-        uint32_t id;     // window id, or vertex id when stamp == kVertexEvent
-        uint32_t stamp;
+        uint32_t id;      // window id, or vertex id when ticket == kVertexEvent
+        uint32_t ticket;  // must equal ticket_[id] for a window entry to be current
     };
     struct Piece {
         double lo, hi;
@@ -139,10 +137,12 @@ private:
     void relaxVertex(uint32_t v, double d);
     uint32_t allocWindow();
     void freeWindow(uint32_t id);
-    void push(double key, uint32_t id, uint32_t stamp);
+    void schedule(uint32_t id);  // queue window `id` for propagation
 
     const ExactGeodesic* geo_ = nullptr;
     std::vector<Window> pool_;
+    std::vector<uint32_t> ticket_;  // per window: its queue ticket while pending, else 0
+    uint32_t nextTicket_ = 1;
     std::vector<uint32_t> freeList_;
     std::vector<uint32_t> edgeHead_;
     BucketQueue<QueueEntry> queue_;

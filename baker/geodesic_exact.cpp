@@ -96,6 +96,7 @@ ExactGeodesic::ExactGeodesic(const Mesh& mesh, const std::vector<uint32_t>& face
         for (uint32_t v : mesh.faces[f]) toGlobal_.push_back(v);
     std::sort(toGlobal_.begin(), toGlobal_.end());
     toGlobal_.erase(std::unique(toGlobal_.begin(), toGlobal_.end()), toGlobal_.end());
+    sortedVertices_ = toGlobal_.size();
     owned_->positions.reserve(toGlobal_.size());
     for (uint32_t v : toGlobal_) owned_->positions.push_back(mesh.positions[v]);
     owned_->faces.reserve(sorted.size());
@@ -105,20 +106,85 @@ ExactGeodesic::ExactGeodesic(const Mesh& mesh, const std::vector<uint32_t>& face
         owned_->faces.push_back(t);
     }
     faceToGlobal_ = std::move(sorted);
-    // A subset of a manifold's faces is a manifold except where two fans of a vertex
-    // touch only at it; such a vertex cannot be unfolded as one and is rejected.
+    splitPinchedVertices();
     ConnectivityReport rep = buildConnectivity(*owned_);
-    if (!rep.ok)
+    if (!rep.ok)  // cannot happen for faces of a manifold mesh; a clear error if it does
         throw std::invalid_argument("patch is not a manifold (vertex " +
                                     std::to_string(globalVertex(uint32_t(rep.firstBadVertex))) + ")");
     mesh_ = owned_.get();
     precompute();
 }
 
+// A subset of a manifold's faces is a manifold except where two fans of faces around a
+// vertex touch only at it. Such a vertex gets one copy per fan, and the copies are
+// linked so that a path can still pass through the point from one fan to the other.
+void ExactGeodesic::splitPinchedVertices() {
+    Mesh& m = *owned_;
+    const uint32_t nc = m.halfedgeCount();  // one corner per half-edge: corner c is faces[c/3][c%3]
+    std::vector<uint32_t> parent(nc);
+    for (uint32_t c = 0; c < nc; ++c) parent[c] = c;
+    auto find = [&](uint32_t c) {
+        while (parent[c] != c) c = parent[c] = parent[parent[c]];
+        return c;
+    };
+    auto unite = [&](uint32_t a, uint32_t b) {
+        a = find(a), b = find(b);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    };
+    // Faces sharing an edge join their corners at both ends of it.
+    struct Key {
+        uint64_t edge;
+        uint32_t h;
+    };
+    std::vector<Key> keys(nc);
+    for (uint32_t h = 0; h < nc; ++h) {
+        uint64_t a = m.tail(int32_t(h)), b = m.head(int32_t(h));
+        keys[h] = {(std::min(a, b) << 32) | std::max(a, b), h};
+    }
+    std::sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) {
+        return x.edge != y.edge ? x.edge < y.edge : x.h < y.h;
+    });
+    for (uint32_t i = 0; i + 1 < nc; ++i) {
+        if (keys[i].edge != keys[i + 1].edge) continue;
+        const uint32_t h0 = keys[i].h, h1 = keys[i + 1].h;  // h1 runs the other way
+        unite(h0, Mesh::next(int32_t(h1)));                 // tail(h0) == head(h1)
+        unite(Mesh::next(int32_t(h0)), h1);                 // head(h0) == tail(h1)
+    }
+    // The fan holding a vertex's lowest corner keeps the vertex; other fans get copies.
+    std::vector<int64_t> fanVertex(nc, -1);
+    std::vector<uint8_t> taken(m.vertexCount(), 0);
+    const uint32_t original = m.vertexCount();
+    for (uint32_t c = 0; c < nc; ++c) {
+        const uint32_t root = find(c);
+        if (fanVertex[root] >= 0) continue;
+        const uint32_t v = m.faces[c / 3][c % 3];
+        if (!taken[v]) {
+            taken[v] = 1;
+            fanVertex[root] = v;
+        } else {
+            fanVertex[root] = m.vertexCount();
+            m.positions.push_back(m.positions[v]);
+            toGlobal_.push_back(toGlobal_[v]);
+        }
+    }
+    if (m.vertexCount() == original) return;
+    for (uint32_t c = 0; c < nc; ++c) m.faces[c / 3][c % 3] = uint32_t(fanVertex[find(c)]);
+    // Circular lists linking the copies of each split vertex.
+    alias_.resize(m.vertexCount());
+    for (uint32_t v = 0; v < m.vertexCount(); ++v) alias_[v] = v;
+    for (uint32_t copy = original; copy < m.vertexCount(); ++copy) {
+        const uint32_t v = uint32_t(localVertex(toGlobal_[copy]));
+        alias_[copy] = alias_[v];
+        alias_[v] = copy;
+    }
+}
+
 int64_t ExactGeodesic::localVertex(uint32_t global) const {
-    if (toGlobal_.empty() && !owned_) return global < mesh_->vertexCount() ? int64_t(global) : -1;
-    auto it = std::lower_bound(toGlobal_.begin(), toGlobal_.end(), global);
-    return (it != toGlobal_.end() && *it == global) ? int64_t(it - toGlobal_.begin()) : -1;
+    if (!owned_) return global < mesh_->vertexCount() ? int64_t(global) : -1;
+    // Copies of split vertices follow the sorted part.
+    auto end = toGlobal_.begin() + std::ptrdiff_t(sortedVertices_);
+    auto it = std::lower_bound(toGlobal_.begin(), end, global);
+    return (it != end && *it == global) ? int64_t(it - toGlobal_.begin()) : -1;
 }
 
 int64_t ExactGeodesic::localFace(uint32_t global) const {
@@ -204,6 +270,8 @@ void ExactWorkspace::relaxVertex(uint32_t v, double d) {
         cur = d;
         if (!isTarget_.empty() && isTarget_[v]) targetsDirty_ = true;
         if (geo_->pseudo_[v]) queue_.push({d, v, kVertexEvent});
+        if (!geo_->alias_.empty())  // the same point in another fan of a patch
+            for (uint32_t a = geo_->alias_[v]; a != v; a = geo_->alias_[a]) relaxVertex(a, d);
     }
 }
 

@@ -71,8 +71,10 @@ public:
     const Mesh& mesh() const { return *mesh_; }
     uint32_t vertexCount() const { return mesh_->vertexCount(); }
     // Domain <-> input mesh indices. For the whole mesh both are the identity.
-    uint32_t globalVertex(uint32_t local) const { return toGlobal_.empty() ? local : toGlobal_[local]; }
-    int64_t localVertex(uint32_t global) const;  // -1 if the vertex is not in the domain
+    uint32_t globalVertex(uint32_t local) const { return owned_ ? toGlobal_[local] : local; }
+    // -1 if the vertex is not in the domain. A patch vertex where two fans of patch faces
+    // meet has one domain vertex per fan (all at the same distance); this returns the first.
+    int64_t localVertex(uint32_t global) const;
     int64_t localFace(uint32_t global) const;    // -1 if the face is not in the domain
     // True where shortest paths may pass through the vertex (saddle or boundary).
     bool isPseudoSourceVertex(uint32_t v) const { return pseudo_[v] != 0; }
@@ -80,10 +82,13 @@ public:
 private:
     friend class ExactWorkspace;
     void precompute();
+    void splitPinchedVertices();
 
     std::unique_ptr<Mesh> owned_;  // the extracted patch, when the domain is one
     const Mesh* mesh_ = nullptr;
     std::vector<uint32_t> toGlobal_;      // local vertex -> input vertex (patch only)
+    size_t sortedVertices_ = 0;           // toGlobal_ is sorted up to here; copies follow
+    std::vector<uint32_t> alias_;         // circular lists of copies of split vertices
     std::vector<uint32_t> faceToGlobal_;  // local face -> input face (patch only)
 
     struct HalfedgeFrame {  // the face of h unfolded with tail(h) at 0 and head(h) on +x

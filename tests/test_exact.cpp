@@ -239,3 +239,28 @@ TEST_CASE("bad sources and targets are rejected", "[exact]") {
     q.targets = {m.vertexCount() + 3};
     CHECK_THROWS_AS(ws.run(geo, q, d), std::invalid_argument);
 }
+
+TEST_CASE("a patch pinched at a vertex is crossed through that vertex", "[exact]") {
+    // Two 2x2-cell blocks of a 4x4 grid on [0,1]^2 that touch only at the centre.
+    const Mesh m = planeGrid(4, 4, 1.0);
+    std::vector<uint32_t> faces;
+    for (uint32_t f = 0; f < m.faceCount(); ++f) {
+        Vec3 c = (m.positions[m.faces[f][0]] + m.positions[m.faces[f][1]] + m.positions[m.faces[f][2]]) * (1.0 / 3);
+        if ((c.x < 0.5 && c.y < 0.5) || (c.x > 0.5 && c.y > 0.5)) faces.push_back(f);
+    }
+    ExactGeodesic patch(m, faces);
+    auto local = [&](double x, double y) {
+        for (uint32_t v = 0; v < m.vertexCount(); ++v)
+            if (std::fabs(m.positions[v].x - x) < 1e-9 && std::fabs(m.positions[v].y - y) < 1e-9)
+                return patch.localVertex(v);
+        return int64_t(-1);
+    };
+    ExactWorkspace ws;
+    ExactQuery q;
+    q.sources.push_back(GeodesicSource::atVertex(uint32_t(local(0.0, 0.5))));
+    std::vector<double> d;
+    ws.run(patch, q, d);
+    CHECK(d[local(0.5, 1.0)] == Approx(1.0).epsilon(1e-12));   // through the pinch at (0.5, 0.5)
+    CHECK(d[local(1.0, 1.0)] == Approx(0.5 + std::sqrt(0.5)).epsilon(1e-12));
+    CHECK(patch.vertexCount() == 9 + 9);  // 17 points, the centre once per block
+}

@@ -132,23 +132,12 @@ void ExactGeodesic::splitPinchedVertices() {
         if (a != b) parent[std::max(a, b)] = std::min(a, b);
     };
     // Faces sharing an edge join their corners at both ends of it.
-    struct Key {
-        uint64_t edge;
-        uint32_t h;
-    };
-    std::vector<Key> keys(nc);
-    for (uint32_t h = 0; h < nc; ++h) {
-        uint64_t a = m.tail(int32_t(h)), b = m.head(int32_t(h));
-        keys[h] = {(std::min(a, b) << 32) | std::max(a, b), h};
-    }
-    std::sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) {
-        return x.edge != y.edge ? x.edge < y.edge : x.h < y.h;
-    });
+    const std::vector<HalfedgeKey> keys = halfedgesByEdge(m);
     for (uint32_t i = 0; i + 1 < nc; ++i) {
         if (keys[i].edge != keys[i + 1].edge) continue;
-        const uint32_t h0 = keys[i].h, h1 = keys[i + 1].h;  // h1 runs the other way
-        unite(h0, Mesh::next(int32_t(h1)));                 // tail(h0) == head(h1)
-        unite(Mesh::next(int32_t(h0)), h1);                 // head(h0) == tail(h1)
+        const int32_t h0 = keys[i].h, h1 = keys[i + 1].h;   // h1 runs the other way
+        unite(uint32_t(h0), uint32_t(Mesh::next(h1)));      // tail(h0) == head(h1)
+        unite(uint32_t(Mesh::next(h0)), uint32_t(h1));      // head(h0) == tail(h1)
     }
     // The fan holding a vertex's lowest corner keeps the vertex; other fans get copies.
     std::vector<int64_t> fanVertex(nc, -1);

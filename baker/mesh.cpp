@@ -5,25 +5,25 @@
 
 namespace vorogeo {
 
+std::vector<HalfedgeKey> halfedgesByEdge(const Mesh& mesh) {
+    const uint32_t nh = mesh.halfedgeCount();
+    std::vector<HalfedgeKey> keys(nh);
+    for (uint32_t h = 0; h < nh; ++h) {
+        uint64_t a = mesh.tail(int32_t(h)), b = mesh.head(int32_t(h));
+        keys[h] = {(std::min(a, b) << 32) | std::max(a, b), int32_t(h)};
+    }
+    std::sort(keys.begin(), keys.end(), [](const HalfedgeKey& x, const HalfedgeKey& y) {
+        return x.edge != y.edge ? x.edge < y.edge : x.h < y.h;
+    });
+    return keys;
+}
+
 ConnectivityReport buildConnectivity(Mesh& mesh) {
     ConnectivityReport report;
     const uint32_t nv = mesh.vertexCount();
     const uint32_t nh = mesh.halfedgeCount();
 
-    // Sort half-edges by their undirected edge key, so twins become neighbours.
-    struct Key {
-        uint64_t edge;
-        int32_t h;
-    };
-    std::vector<Key> keys(nh);
-    for (uint32_t h = 0; h < nh; ++h) {
-        uint32_t a = mesh.tail(int32_t(h)), b = mesh.head(int32_t(h));
-        uint64_t lo = std::min(a, b), hi = std::max(a, b);
-        keys[h] = {(lo << 32) | hi, int32_t(h)};
-    }
-    std::sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) {
-        return x.edge != y.edge ? x.edge < y.edge : x.h < y.h;
-    });
+    const std::vector<HalfedgeKey> keys = halfedgesByEdge(mesh);  // twins become neighbours
 
     std::vector<int32_t> twin(nh, -1);
     auto noteBadVertex = [&](uint32_t v) {

@@ -57,6 +57,15 @@ struct Mesh {
     int32_t nextAroundVertex(int32_t h) const { return twin[prev(h)]; }
 };
 
+// A half-edge with the key of its undirected edge (lower vertex id in the high 32 bits).
+struct HalfedgeKey {
+    uint64_t edge;
+    int32_t h;
+};
+// All half-edges sorted by undirected edge, then by id: the half-edges of one edge are
+// adjacent. Needs only the face list.
+std::vector<HalfedgeKey> halfedgesByEdge(const Mesh& mesh);
+
 // Result of buildConnectivity: ok, or the first problem found.
 struct ConnectivityReport {
     bool ok = true;

@@ -92,7 +92,8 @@ Partition partitionMesh(const Mesh& mesh, const PartitionOptions& options, const
     DomainPartition layer1;
     {
         const ExactGeodesic geo(mesh);
-        layer1 = partitionDomain(geo, n1, options.sampling, mixSeed(options.seed, 0));
+        layer1 = partitionDomain(geo, n1, options.sampling, mixSeed(options.seed, 0),
+                                 [&](double f) { report("first layer", f); });
     }
     out.faceFirst = layer1.faceRegion;
     out.first = buildPatches(mesh, out.faceFirst, layer1.seeds, {});

@@ -4,9 +4,11 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <queue>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "patch_topology.h"
 
@@ -168,15 +170,20 @@ struct SeedRun {
 void applySeedRuns(const ExactGeodesic& geo, const std::vector<uint32_t>& seeds, const std::vector<SeedRun>& runs,
                    std::vector<double>& D, std::vector<uint32_t>& label) {
     std::vector<std::vector<std::pair<uint32_t, double>>> reached(runs.size());
-    tbb::enumerable_thread_specific<ExactWorkspace> workspaces;
+    struct Scratch {  // reused between runs: a fresh distance array per run costs more than the run
+        ExactWorkspace workspace;
+        std::vector<double> distances;
+    };
+    tbb::enumerable_thread_specific<Scratch> scratch;
     tbb::parallel_for(size_t(0), runs.size(), [&](size_t i) {
         ExactQuery q;
         q.sources.push_back(GeodesicSource::atVertex(seeds[runs[i].seed]));
         q.maxDistance = runs[i].bound;
-        std::vector<double> d;
-        workspaces.local().run(geo, q, d);
+        Scratch& local = scratch.local();
+        const std::vector<double>& d = local.distances;
+        local.workspace.run(geo, q, local.distances);
         for (uint32_t v = 0; v < d.size(); ++v)
-            if (d[v] <= D[v]) reached[i].push_back({v, d[v]});
+            if (d[v] <= D[v] && d[v] < kInfinity) reached[i].push_back({v, d[v]});
     });
     for (size_t i = 0; i < runs.size(); ++i) {
         const uint32_t s = runs[i].seed;
@@ -228,12 +235,23 @@ void exactVoronoi(const ExactGeodesic& geo, const VertexGraph& graph, const std:
     label.assign(nv, kNoRegion);
     std::vector<SeedRun> runs;
     for (uint32_t i = 0; i < ns; ++i) runs.push_back({i, bound[i]});
-    std::vector<uint32_t> byBound(ns);
+    // Seeds in a uniform grid of cells as wide as the largest first bound, to find the
+    // seeds within a straight-line distance of a vertex.
+    double cell = 0, minBound = kInfinity;
+    for (double b : bound) cell = std::max(cell, b), minBound = std::min(minBound, b);
+    if (!(cell > 0)) cell = 1.0;
+    auto cellOf = [&](double x) { return int64_t(std::floor(x / cell)); };
+    auto key = [](int64_t x, int64_t y, int64_t z) {
+        return (uint64_t(x & 0x1FFFFF) << 42) | (uint64_t(y & 0x1FFFFF) << 21) | uint64_t(z & 0x1FFFFF);
+    };
+    std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
+    for (uint32_t t = 0; t < ns; ++t) {
+        const Vec3& p = m.positions[seeds[t]];
+        grid[key(cellOf(p.x), cellOf(p.y), cellOf(p.z))].push_back(t);
+    }
     std::vector<double> need(ns);
     while (!runs.empty()) {
         applySeedRuns(geo, seeds, runs, D, label);
-        std::iota(byBound.begin(), byBound.end(), 0u);
-        std::sort(byBound.begin(), byBound.end(), [&](uint32_t a, uint32_t b) { return bound[a] < bound[b]; });
         std::fill(need.begin(), need.end(), 0.0);
         for (uint32_t v = 0; v < nv; ++v) {
             if (edgeLabel[v] == kNoRegion) continue;  // isolated, or no seed in its component
@@ -241,10 +259,25 @@ void exactVoronoi(const ExactGeodesic& geo, const VertexGraph& graph, const std:
                 need[edgeLabel[v]] = std::max(need[edgeLabel[v]], 2.0 * padded(edgeD[v]));
                 continue;
             }
-            for (uint32_t t : byBound) {
-                if (bound[t] >= D[v]) break;
-                if (distance(m.positions[seeds[t]], m.positions[v]) < D[v]) need[t] = std::max(need[t], D[v]);
+            if (D[v] <= minBound) continue;  // every seed ran at least this far
+            const Vec3& p = m.positions[v];
+            const double r = D[v];
+            auto check = [&](uint32_t t) {
+                if (bound[t] < r && distance(m.positions[seeds[t]], p) < r) need[t] = std::max(need[t], r);
+            };
+            const int64_t x0 = cellOf(p.x - r), x1 = cellOf(p.x + r), y0 = cellOf(p.y - r), y1 = cellOf(p.y + r),
+                          z0 = cellOf(p.z - r), z1 = cellOf(p.z + r);
+            if (double(x1 - x0 + 1) * double(y1 - y0 + 1) * double(z1 - z0 + 1) > double(ns)) {
+                for (uint32_t t = 0; t < ns; ++t) check(t);
+                continue;
             }
+            for (int64_t x = x0; x <= x1; ++x)
+                for (int64_t y = y0; y <= y1; ++y)
+                    for (int64_t z = z0; z <= z1; ++z) {
+                        const auto it = grid.find(key(x, y, z));
+                        if (it != grid.end())
+                            for (uint32_t t : it->second) check(t);
+                    }
         }
         runs.clear();
         for (uint32_t t = 0; t < ns; ++t)
@@ -253,6 +286,9 @@ void exactVoronoi(const ExactGeodesic& geo, const VertexGraph& graph, const std:
                 runs.push_back({t, bound[t]});
             }
     }
+    // Cannot happen (a geodesic is never longer than an edge path); kept total anyway.
+    for (uint32_t v = 0; v < nv; ++v)
+        if (edgeLabel[v] != kNoRegion && !(D[v] < kInfinity)) D[v] = edgeD[v], label[v] = edgeLabel[v];
 }
 
 // New seeds lower D where they are nearer. Each runs alone, bounded by the current
@@ -273,7 +309,11 @@ void addSeeds(const ExactGeodesic& geo, const std::vector<uint32_t>& added, std:
 }  // namespace
 
 DomainPartition partitionDomain(const ExactGeodesic& geo, uint32_t seedCount, PartitionOptions::Sampling sampling,
-                                uint64_t rngSeed) {
+                                uint64_t rngSeed, const std::function<void(double)>& progress,
+                                uint32_t maxDiskRounds) {
+    auto report = [&](double f) {
+        if (progress) progress(f);
+    };
     const Mesh& m = geo.mesh();
     const VertexGraph graph(m);
     Random rng(rngSeed);
@@ -282,11 +322,13 @@ DomainPartition partitionDomain(const ExactGeodesic& geo, uint32_t seedCount, Pa
     seeds = sampling == PartitionOptions::Sampling::Random ? randomSeeds(m, seedCount, rng)
                                                           : farthestPointSeeds(m, graph, seedCount, rng);
     out.sampledSeeds = uint32_t(seeds.size());
+    report(0.1);
 
     // Exact distance to the nearest seed and which seed it is.
     std::vector<double> D;
     std::vector<uint32_t> label;
     exactVoronoi(geo, graph, seeds, D, label);
+    report(0.8);
 
     std::vector<uint32_t>& faceRegion = out.faceRegion;
     std::vector<RegionTopology> topo;
@@ -303,7 +345,7 @@ DomainPartition partitionDomain(const ExactGeodesic& geo, uint32_t seedCount, Pa
         faulty.clear();
         for (uint32_t r = 0; r < seeds.size(); ++r)
             if (topo[r].faces > 0 && !topo[r].isDisk()) faulty.push_back(r);
-        if (faulty.empty() || round == kMaxDiskRounds) break;
+        if (faulty.empty() || round == maxDiskRounds) break;
         collectFaces();
         std::vector<uint8_t> isSeed(m.vertexCount(), 0);
         for (uint32_t s : seeds) isSeed[s] = 1;
@@ -334,6 +376,7 @@ DomainPartition partitionDomain(const ExactGeodesic& geo, uint32_t seedCount, Pa
         }
     }
 
+    report(0.95);
     // Drop regions without faces (a seed whose cell holds no face's majority).
     std::vector<uint32_t> remap(seeds.size(), kNoRegion), used(seeds.size(), 0);
     for (uint32_t r : faceRegion) used[r] = 1;

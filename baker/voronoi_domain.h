@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "geodesic_exact.h"
@@ -27,7 +28,10 @@ struct DomainPartition {
 };
 
 // `seedCount` must lie between the domain's number of components and its used vertices.
+// `progress` (optional) receives the fraction done. `maxDiskRounds` below the default is
+// for tests of the fallback cut.
 DomainPartition partitionDomain(const ExactGeodesic& geo, uint32_t seedCount, PartitionOptions::Sampling sampling,
-                                uint64_t rngSeed);
+                                uint64_t rngSeed, const std::function<void(double)>& progress = {},
+                                uint32_t maxDiskRounds = kMaxDiskRounds);
 
 }  // namespace vorogeo

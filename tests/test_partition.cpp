@@ -16,6 +16,8 @@
 #include "mesh_stats.h"
 #include "partition.h"
 #include "patch_topology.h"
+#include "seed_sampling.h"
+#include "voronoi_domain.h"
 #include "test_helpers.h"
 
 using namespace vorogeo;
@@ -359,6 +361,58 @@ TEST_CASE("region topology tells disks from other surfaces", "[partition]") {
     CHECK(t.components == 2);
     CHECK(t.pinchedVertices == 1);
     CHECK(t.firstPinchedVertex == centre);
+}
+
+TEST_CASE("the fallback cut makes disks when no disk rounds are allowed", "[partition]") {
+    const Mesh m = torus(2.0, 0.7, 32, 16);
+    const ExactGeodesic geo(m);
+    const DomainPartition d = partitionDomain(geo, 1, PartitionOptions::Sampling::FarthestPoint, 1, {}, 0);
+    CHECK(d.diskSeeds == 0);
+    CHECK(d.cutRegions >= 1);
+    REQUIRE(d.faceRegion.size() == m.faceCount());
+    for (const RegionTopology& t : regionTopology(m, d.faceRegion, uint32_t(d.seeds.size()))) CHECK(t.isDisk());
+    // With rounds, seeds do it instead.
+    const DomainPartition e = partitionDomain(geo, 1, PartitionOptions::Sampling::FarthestPoint, 1);
+    CHECK(e.diskSeeds >= 1);
+    CHECK(e.cutRegions == 0);
+}
+
+TEST_CASE("isolated vertices belong to no patch", "[partition]") {
+    Mesh m = icosphere(2);
+    m.positions.push_back({5.0, 5.0, 5.0});
+    REQUIRE(prepareMesh("isolated", LoadOptions(), m).ok);
+    const Partition part = checkedPartition(m, withSeeds(3));
+    const uint32_t lonely = m.vertexCount() - 1;
+    for (const auto* layer : {&part.first, &part.second})
+        for (const Patch& p : *layer) {
+            CHECK(!std::binary_search(p.border.begin(), p.border.end(), lonely));
+            CHECK(!std::binary_search(p.interior.begin(), p.interior.end(), lonely));
+            CHECK(p.seedVertex != lonely);
+        }
+    CHECK_THROWS_AS(partitionMesh(m, withSeeds(m.vertexCount())), std::invalid_argument);  // one is unused
+}
+
+TEST_CASE("seed sampling covers components and keeps off the boundary", "[partition]") {
+    const Mesh two = twoComponents();
+    const VertexGraph graph(two);
+    const std::vector<uint32_t> comp = vertexComponents(two);
+    for (int method = 0; method < 2; ++method) {
+        Random rng(3);
+        const auto seeds = method == 0 ? farthestPointSeeds(two, graph, 2, rng) : randomSeeds(two, 2, rng);
+        REQUIRE(seeds.size() == 2);
+        CHECK(comp[seeds[0]] != comp[seeds[1]]);
+        Random rng2(3);
+        CHECK_THROWS_AS(method == 0 ? farthestPointSeeds(two, graph, 1, rng2) : randomSeeds(two, 1, rng2),
+                        std::invalid_argument);
+    }
+    // On a square the first farthest-point seed is its centre, away from the border.
+    const Mesh grid = planeGrid(20, 20);
+    Random rng(1);
+    const auto seeds = farthestPointSeeds(grid, VertexGraph(grid), 5, rng);
+    CHECK(distance(grid.positions[seeds[0]], {0.5, 0.5, 0.0}) < 1e-9);
+    for (uint32_t s : seeds) CHECK(!grid.boundaryVertex[s]);
+    std::set<uint32_t> distinct(seeds.begin(), seeds.end());
+    CHECK(distinct.size() == seeds.size());
 }
 
 // Hidden: patch-size uniformity of farthest-point against random sampling, and timing,

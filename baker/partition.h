@@ -29,9 +29,10 @@
 //     pinched vertex, else the vertex of largest D on one of its boundary loops other than
 //     the longest, else its vertex of largest D. The new seeds' exact fields (one bounded
 //     run each, in parallel, up to the current largest D, so the update is exact) lower D
-//     and relabel the vertices they are nearest to; this repeats (at most
-//     kMaxDiskRounds rounds). A patch still not a disk after that is cut into disks by
-//     greedy face growth (never seen on the test meshes; counted in PartitionStats).
+//     and relabel the vertices they are nearest to; this repeats (at most 32 rounds).
+//     A patch still not a disk after that is cut into disks by greedy face growth (never
+//     needed on the test or shared meshes; counted in PartitionStats). The shared meshes
+//     need up to 17 such seeds (armadillo-50k: patches wrapped around its limbs).
 //  5. Border/interior: a patch vertex is a border vertex (Bv) if one of its faces belongs
 //     to another patch or it lies on a mesh boundary (hole-adjacent vertices are always
 //     border vertices); otherwise it is an interior vertex (Iv). Second-layer borders
@@ -47,19 +48,20 @@
 // Sampling, measured by the hidden test "[.measure]" (vertices per patch, border vertices
 // counted in every patch they touch; automatic sizes, seed 1, 2 threads):
 //                           first layer                        second layer
-//   bumpyTorus  28,800 V  FPS     10 patches  1872-5016 sd 1009   305 patches  65-256 sd 32
+//   bumpyTorus  28,800 V  FPS     10 patches  2127-4938 sd  764   304 patches  70-218 sd 27
 //                         Random  11 patches  1771-4891 sd  916   308 patches   4-547 sd 73
-//   igea       134,345 V  FPS     45 patches  2175-4257 sd  502  1416 patches  71-231 sd 24
+//   igea       134,345 V  FPS     45 patches  2280-4102 sd  474  1416 patches  71-249 sd 24
 //                         Random  45 patches   692-7836 sd 1539  1421 patches   3-542 sd 63
-//   (spot, 2,930 V: one seed, split into 2 disks either way; second layer sd 56 / 62.)
-// Farthest-point sampling is the default. On igea its patches are 3x more uniform in both
-// layers (sd 16% and 20% of the mean against 49% and 50%): no patch far beyond the planned
-// size (the precomputation grows with |Bv|^2 and |Iv|^2 per patch) and no sliver patches
-// of 3-4 vertices; it is also faster (2 s against 5 s on igea, since random cells are
-// uneven and the exact runs must reach across the largest). It spaces seeds evenly by
-// surface distance, so on meshes whose vertex density varies (the torus is denser on its
-// inner side) patch vertex counts still vary; second-layer seeds keep off the first-layer
-// border (see farthestPointSeeds), which halved the second-layer spread.
+//   spot         2,930 V  one seed split into 2 disks either way; second layer sd 38 / 62
+// Farthest-point sampling is the default. On igea its patches are 2.6-3x more uniform in
+// both layers (sd 15% and 20% of the mean against 49% and 51%): no patch far beyond the
+// planned size (the precomputation grows with |Bv|^2 and |Iv|^2 per patch) and no sliver
+// patches of 3-4 vertices. It is also faster (1.9 s against 4.8 s on igea: random cells
+// are uneven and the exact runs must reach across the largest). Its distance counts edges
+// relative to their local length (see farthestPointSeeds), so seeds follow vertex density
+// and patch vertex counts stay even where the density varies (nefertiti-50k first layer
+// sd 1310 -> 640, second 52 -> 26 against plain edge lengths), and second-layer seeds
+// keep off the first-layer border, which halved the second-layer spread.
 #pragma once
 
 #include <cstdint>

@@ -63,6 +63,19 @@ std::vector<uint32_t> farthestPointSeeds(const Mesh& mesh, const VertexGraph& gr
     const std::vector<uint32_t> used = usedVertices(mesh);
     checkCount(count, componentCount(vertexComponents(mesh)), used.size());
     const double inf = std::numeric_limits<double>::infinity();
+    // Edge weights: length over the mean length of the edges at both ends.
+    const uint32_t nv = graph.vertexCount();
+    std::vector<double> meanEdge(nv, 0.0), weight(graph.length.size());
+    for (uint32_t v = 0; v < nv; ++v) {
+        double sum = 0;
+        for (uint32_t i = graph.offset[v]; i < graph.offset[v + 1]; ++i) sum += graph.length[i];
+        if (graph.offset[v + 1] > graph.offset[v]) meanEdge[v] = sum / double(graph.offset[v + 1] - graph.offset[v]);
+    }
+    for (uint32_t v = 0; v < nv; ++v)
+        for (uint32_t i = graph.offset[v]; i < graph.offset[v + 1]; ++i) {
+            const double scale = 0.5 * (meanEdge[v] + meanEdge[graph.neighbor[i]]);
+            weight[i] = scale > 0 ? graph.length[i] / scale : 1.0;
+        }
     using Item = std::pair<double, uint32_t>;
     std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
     // Pruned Dijkstra: only vertices whose distance drops are visited.
@@ -72,7 +85,7 @@ std::vector<uint32_t> farthestPointSeeds(const Mesh& mesh, const VertexGraph& gr
             queue.pop();
             if (d > dist[v]) continue;
             for (uint32_t i = graph.offset[v]; i < graph.offset[v + 1]; ++i) {
-                const double nd = d + graph.length[i];
+                const double nd = d + weight[i];
                 const uint32_t w = graph.neighbor[i];
                 if (nd < dist[w]) {
                     dist[w] = nd;

@@ -25,15 +25,18 @@ struct VertexGraph {
 // isolated vertices), as vertexComponents() in mesh_stats.h.
 uint32_t componentCount(const std::vector<uint32_t>& vertexComponent);
 
-// Farthest-point sampling: each next seed is the vertex farthest from all seeds so far by
-// shortest paths along edges (kept up to date by a Dijkstra pruned to the vertices the new
-// seed brings closer), ties to the smaller index. With `mirrorBoundary`, the domain
-// boundary counts as seeds standing mirrored beyond it (a vertex starts at twice its
-// distance to the boundary), so seeds keep off the boundary and border cells are not
-// halved; the first seed of a component is then its vertex farthest from the boundary. A
-// component without a boundary starts at a random vertex. A component without a seed is
-// infinitely far, so every component gets one before any gets a second. `count` must be
-// at least the number of components and at most the number of used vertices.
+// Farthest-point sampling: each next seed is the vertex farthest from all seeds so far
+// (ties to the smaller index), by shortest paths in the edge graph where an edge weighs its
+// length over the mean length of the edges at its two ends (about 1 per edge anywhere, so
+// seeds spread evenly by vertex count where the mesh density varies, and by distance where
+// it does not). Distances are kept up to date by a Dijkstra pruned to the vertices the new
+// seed brings closer. With `mirrorBoundary`, the domain boundary counts as seeds standing
+// mirrored beyond it (a vertex starts at twice its distance to the boundary), so seeds keep
+// off the boundary and border cells are not halved; the first seed of a component is then
+// its vertex farthest from the boundary, and a component without a boundary starts at a
+// random vertex. A component without a seed is infinitely far, so every component gets
+// one before any gets a second. `count` must be at least the number of components and at
+// most the number of used vertices.
 std::vector<uint32_t> farthestPointSeeds(const Mesh& mesh, const VertexGraph& graph, uint32_t count, Random& rng,
                                          bool mirrorBoundary = true);
 

@@ -76,33 +76,23 @@ void makeConnected(const Mesh& m, const std::vector<double>& D, std::vector<uint
             faceRegion[f] = kNoRegion;
             orphans.push_back(f);
         }
-    std::vector<uint32_t> next;
     while (!orphans.empty()) {
         std::vector<std::pair<uint32_t, uint32_t>> assigned;
         std::vector<uint32_t> still;
         for (uint32_t f : orphans) {
-            uint32_t cand[3], count[3], n = 0;
+            const Tri& tri = m.faces[f];
+            const Vec3 centre = (m.positions[tri[0]] + m.positions[tri[1]] + m.positions[tri[2]]) * (1.0 / 3);
+            uint32_t best = kNoRegion;
+            double bestDist = kInfinity;
             for (int k = 0; k < 3; ++k) {
                 const int32_t t = m.twin[3 * f + k];
                 if (t < 0 || faceRegion[t / 3] == kNoRegion) continue;
                 const uint32_t r = faceRegion[t / 3];
-                uint32_t i = 0;
-                while (i < n && cand[i] != r) ++i;
-                if (i == n) cand[n] = r, count[n++] = 0;
-                ++count[i];
+                const double d = distance(m.positions[seeds[r]], centre);
+                if (d < bestDist || (d == bestDist && r < best)) best = r, bestDist = d;
             }
-            if (n == 0) {
-                still.push_back(f);
-                continue;
-            }
-            const Vec3 centre = (m.positions[m.faces[f][0]] + m.positions[m.faces[f][1]] + m.positions[m.faces[f][2]]) * (1.0 / 3);
-            uint32_t best = 0;
-            double bestDist = kInfinity;
-            for (uint32_t i = 0; i < n; ++i) {
-                const double d = distance(m.positions[seeds[cand[i]]], centre);
-                if (d < bestDist || (d == bestDist && cand[i] < cand[best])) best = i, bestDist = d;
-            }
-            assigned.push_back({f, cand[best]});
+            if (best == kNoRegion) still.push_back(f);
+            else assigned.push_back({f, best});
         }
         if (assigned.empty()) break;
         for (const auto& [f, r] : assigned) faceRegion[f] = r;

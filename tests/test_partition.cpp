@@ -274,6 +274,23 @@ TEST_CASE("the partition does not depend on the number of threads", "[partition]
     }
 }
 
+TEST_CASE("disk rounds do not depend on the number of threads either", "[partition]") {
+    const Mesh m = gridWithHoles(30, 4);
+    Partition a, b;
+    {
+        tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+        a = partitionMesh(m, withSeeds(1, 8));
+    }
+    {
+        tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
+        b = partitionMesh(m, withSeeds(1, 8));
+    }
+    CHECK(a.stats.firstDiskSeeds > 0);
+    CHECK(a.stats.firstDiskSeeds == b.stats.firstDiskSeeds);
+    CHECK(a.faceFirst == b.faceFirst);
+    CHECK(a.faceSecond == b.faceSecond);
+}
+
 TEST_CASE("automatic sizes follow the documented rules", "[partition]") {
     const Mesh m = bumpyTorus(120, 60);  // 7,200 vertices: n1 = round(7200 / 3000) = 2
     const Partition part = partitionMesh(m, PartitionOptions());

@@ -18,8 +18,10 @@
 //     further. Cost on igea (134K vertices, 45 seeds): 2.5 s of CPU, 1.3 s on 2 threads,
 //     against 1.6-1.9 s (one thread, not parallel) for one multi-source run of all seeds,
 //     whose distances would still need labels: propagated over that field (each vertex
-//     taking the label of the neighbour minimising D(u) + |uv|) they were off by up to 3
-//     edge lengths on coarse patches, so the per-seed runs replace the multi-source run.
+//     taking the label of the neighbour minimising D(u) + |uv|, tried first) they named the
+//     wrong seed for 9 of 54 vertices of a coarse second-layer patch of twoComponents, up
+//     to about 3 edge lengths farther than the nearest; so per-seed runs replace the
+//     multi-source run.
 //  3. Faces: a face goes to the label held by at least two of its vertices, else to the
 //     smallest of the three seed indices. Pieces of a patch cut off from the piece at its
 //     seed (mostly single faces touching it at a vertex) go to the edge-adjacent patch

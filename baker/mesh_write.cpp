@@ -66,8 +66,8 @@ void writeObj(const Mesh& m, Writer& w) {
     }
 }
 
-void writeOff(const Mesh& m, Writer& w) {
-    w.text("OFF\n" + std::to_string(m.vertexCount()) + " " + std::to_string(m.faceCount()) + " 0\n");
+// OFF and ASCII PLY share their body: "x y z" lines, then "3 a b c" lines (0-based).
+void writeAsciiBody(const Mesh& m, Writer& w) {
     for (const Vec3& p : m.positions) {
         w.number(p.x);
         w.text(" ");
@@ -84,6 +84,11 @@ void writeOff(const Mesh& m, Writer& w) {
         }
         w.text("\n");
     }
+}
+
+void writeOff(const Mesh& m, Writer& w) {
+    w.text("OFF\n" + std::to_string(m.vertexCount()) + " " + std::to_string(m.faceCount()) + " 0\n");
+    writeAsciiBody(m, w);
 }
 
 void writePly(const Mesh& m, Writer& w, bool binary) {
@@ -103,22 +108,7 @@ void writePly(const Mesh& m, Writer& w, bool binary) {
         }
         return;
     }
-    for (const Vec3& p : m.positions) {
-        w.number(p.x);
-        w.text(" ");
-        w.number(p.y);
-        w.text(" ");
-        w.number(p.z);
-        w.text("\n");
-    }
-    for (const Tri& t : m.faces) {
-        w.text("3");
-        for (uint32_t v : t) {
-            w.text(" ");
-            w.number(uint64_t(v));
-        }
-        w.text("\n");
-    }
+    writeAsciiBody(m, w);
 }
 
 Vec3 faceNormal(const Mesh& m, const Tri& t) {

@@ -45,10 +45,12 @@ private:
     bool ok_ = true;
 };
 
-void writeObj(const Mesh& m, Writer& w) {
-    w.text("# written by vorogeo\n");
+// OBJ, OFF and ASCII PLY share their body: one line per vertex, then one per triangle;
+// they differ only in the line prefixes and in OBJ counting vertices from 1.
+void writeAsciiBody(const Mesh& m, Writer& w, const char* vertexPrefix, const char* facePrefix,
+                    uint64_t indexBase) {
     for (const Vec3& p : m.positions) {
-        w.text("v ");
+        w.text(vertexPrefix);
         w.number(p.x);
         w.text(" ");
         w.number(p.y);
@@ -57,38 +59,23 @@ void writeObj(const Mesh& m, Writer& w) {
         w.text("\n");
     }
     for (const Tri& t : m.faces) {
-        w.text("f");
+        w.text(facePrefix);
         for (uint32_t v : t) {
             w.text(" ");
-            w.number(uint64_t(v) + 1);
+            w.number(uint64_t(v) + indexBase);
         }
         w.text("\n");
     }
 }
 
-// OFF and ASCII PLY share their body: "x y z" lines, then "3 a b c" lines (0-based).
-void writeAsciiBody(const Mesh& m, Writer& w) {
-    for (const Vec3& p : m.positions) {
-        w.number(p.x);
-        w.text(" ");
-        w.number(p.y);
-        w.text(" ");
-        w.number(p.z);
-        w.text("\n");
-    }
-    for (const Tri& t : m.faces) {
-        w.text("3");
-        for (uint32_t v : t) {
-            w.text(" ");
-            w.number(uint64_t(v));
-        }
-        w.text("\n");
-    }
+void writeObj(const Mesh& m, Writer& w) {
+    w.text("# written by vorogeo\n");
+    writeAsciiBody(m, w, "v ", "f", 1);
 }
 
 void writeOff(const Mesh& m, Writer& w) {
     w.text("OFF\n" + std::to_string(m.vertexCount()) + " " + std::to_string(m.faceCount()) + " 0\n");
-    writeAsciiBody(m, w);
+    writeAsciiBody(m, w, "", "3", 0);
 }
 
 void writePly(const Mesh& m, Writer& w, bool binary) {
@@ -108,7 +95,7 @@ void writePly(const Mesh& m, Writer& w, bool binary) {
         }
         return;
     }
-    writeAsciiBody(m, w);
+    writeAsciiBody(m, w, "", "3", 0);
 }
 
 Vec3 faceNormal(const Mesh& m, const Tri& t) {

@@ -14,6 +14,7 @@ int runInfo(int argc, char** argv);
 int runDemo(int argc, char** argv);
 int runExact(int argc, char** argv);
 int runBenchExact(int argc, char** argv);
+int runBake(int argc, char** argv);
 }  // namespace vorogeo::tools
 
 namespace {
@@ -24,6 +25,7 @@ const Command kCommands[] = {
     {"info", "load and validate a mesh, print its statistics", vorogeo::tools::runInfo},
     {"demo", "run the pipeline on a built-in mesh", vorogeo::tools::runDemo},
     {"exact", "exact geodesic distances (MMP); check against golden pairs", vorogeo::tools::runExact},
+    {"bake", "precompute a mesh's patch graph into a .vgeo blob", vorogeo::tools::runBake},
     {"bench-exact", "benchmark the exact engine against edge Dijkstra", vorogeo::tools::runBenchExact},
     {nullptr, nullptr, nullptr},  // sentinel, keeps the array non-empty
 };

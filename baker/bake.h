@@ -1,0 +1,56 @@
+// The whole bake (thesis Algorithm 1): partition, patch geodesics, first-layer overlay,
+// pruning, and the blob. One call from a prepared mesh to the bytes of a .vgeo file.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "graph_prune.h"
+#include "mesh.h"
+
+namespace vorogeo {
+
+struct BakeOptions {
+    uint32_t n1 = 0;              // first-layer patches; 0 = automatic (about 3,000 vertices each)
+    uint32_t n2 = 0;              // second-layer patches per first-layer patch; 0 = automatic (about 100 vertices each)
+    double delta = -1;            // pruning threshold, fraction of the bounding-box diagonal; < 0 = automatic
+    uint64_t seed = 1;
+    uint32_t marginRings = 1;     // rings of faces around a patch for its geodesics
+    bool exactFirstLayer = false; // first-layer distances by exact runs (thesis) instead of composed
+    bool compress = true;         // zstd frame, else the flatbuffer as is (zero-copy)
+    int compressionLevel = 9;
+};
+
+// The automatic pruning threshold (fraction of the bounding-box diagonal).
+constexpr double kDefaultDelta = 0.0;
+
+struct BakeStage {
+    std::string name;
+    double seconds = 0;
+};
+
+struct BakeReport {
+    uint32_t vertices = 0, faces = 0;
+    uint32_t n1 = 0, n2 = 0;  // effective automatic or requested values
+    double delta = 0, deltaAbsolute = 0, deltaSecond = 0;
+    std::vector<BakeStage> stages;
+    size_t firstPatches = 0, secondPatches = 0;
+    uint64_t firstBorder = 0, firstInterior = 0;   // Bv / Iv summed over first-layer patches
+    uint64_t secondBorder = 0, secondInterior = 0; // the same over second-layer patches
+    PruneStats firstPrune, secondPrune;
+    uint64_t sourceRuns = 0;
+    double quantisationMaxRel = 0;  // largest relative error added by 16-bit distances
+    size_t flatbufferBytes = 0, blobBytes = 0;
+    bool compressed = true;
+};
+
+using BakeProgress = std::function<void(const char* stage, double fraction)>;
+
+// Bakes a prepared mesh (connectivity built). Throws std::invalid_argument for bad options
+// (naming the option and the allowed range), std::runtime_error if the mesh cannot be baked.
+std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, BakeReport& report,
+                              const BakeProgress& progress = BakeProgress());
+
+}  // namespace vorogeo

@@ -1,0 +1,211 @@
+#include "blob_writer.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+#include <unistd.h>
+#include <zstd.h>
+
+#include "mesh_stats.h"
+#include "vorogeo_container.h"
+#include "vorogeo_generated.h"
+
+namespace vorogeo {
+
+namespace {
+
+constexpr uint16_t kNoPath = 0xFFFF;
+constexpr double kLargestQuantum = 65534.0;
+
+// Appends one patch matrix as uint16 quanta; returns the scale.
+float quantise(const PatchMatrix& m, std::vector<uint16_t>& out, double& maxRel) {
+    double largest = 0;
+    for (double d : m.upper)
+        if (std::isfinite(d)) largest = std::max(largest, d);
+    const float scale = largest > 0 ? float(largest / kLargestQuantum) : 1.0f;
+    for (double d : m.upper) {
+        if (!std::isfinite(d)) {
+            out.push_back(kNoPath);
+            continue;
+        }
+        const double q = std::min(kLargestQuantum, std::round(d / double(scale)));
+        out.push_back(uint16_t(q));
+        if (d > 0) maxRel = std::max(maxRel, std::fabs(q * double(scale) - d) / d);
+    }
+    return scale;
+}
+
+}  // namespace
+
+std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partition,
+                                      const std::vector<PatchMatrix>& first, const std::vector<PatchMatrix>& second,
+                                      const std::vector<uint8_t>& secondInactive, const BlobParams& params,
+                                      double& quantisationMaxRel) {
+    const uint32_t V = mesh.vertexCount();
+    quantisationMaxRel = 0;
+
+    // Nodes: vertices in the node part of a second-layer patch, by increasing vertex id.
+    std::vector<uint32_t> nodeOf(V, UINT32_MAX);
+    for (const PatchMatrix& m : second)
+        for (uint32_t i = 0; i < m.nodeCount; ++i) nodeOf[m.vertices[i]] = 0;
+    std::vector<uint32_t> nodeVertex;
+    for (uint32_t v = 0; v < V; ++v)
+        if (nodeOf[v] == 0) {
+            nodeOf[v] = uint32_t(nodeVertex.size());
+            nodeVertex.push_back(v);
+        }
+    const size_t N = nodeVertex.size();
+
+    std::vector<uint32_t> vertexPatch(V, UINT32_MAX), vertexSlot(V, UINT32_MAX);
+    std::vector<std::vector<fb::Membership>> secondOf(N), firstOf(N);
+    std::vector<uint32_t> slots;
+    std::vector<uint16_t> secondDist, firstDist;
+    std::vector<fb::PatchRecord> secondRecords, firstRecords;
+
+    for (uint32_t p = 0; p < second.size(); ++p) {
+        const PatchMatrix& m = second[p];
+        if (m.vertices.size() > 65535)
+            throw std::runtime_error("a second-layer patch has " + std::to_string(m.vertices.size()) +
+                                     " vertices (at most 65535): raise --n2");
+        const uint32_t begin = uint32_t(slots.size());
+        const uint64_t matrixBegin = secondDist.size();
+        for (uint32_t i = 0; i < m.vertices.size(); ++i) {
+            const uint32_t v = m.vertices[i];
+            if (vertexPatch[v] == UINT32_MAX) {
+                vertexPatch[v] = p;
+                vertexSlot[v] = i;
+            }
+            if (i < m.nodeCount) {
+                secondOf[nodeOf[v]].push_back(fb::Membership(p, i));
+                slots.push_back(nodeOf[v]);
+            } else {
+                slots.push_back(v);
+            }
+        }
+        const float scale = quantise(m, secondDist, quantisationMaxRel);
+        secondRecords.emplace_back(begin, uint32_t(m.vertices.size()), m.nodeCount, matrixBegin, scale,
+                                   partition.second[p].parent);
+    }
+
+    std::vector<uint32_t> component = vertexComponents(mesh);
+    for (uint32_t p = 0; p < first.size(); ++p) {
+        const PatchMatrix& m = first[p];
+        const uint32_t begin = uint32_t(slots.size());
+        const uint64_t matrixBegin = firstDist.size();
+        for (uint32_t i = 0; i < m.rows; ++i) {
+            firstOf[nodeOf[m.vertices[i]]].push_back(fb::Membership(p, i));
+            slots.push_back(nodeOf[m.vertices[i]]);
+        }
+        const float scale = quantise(m, firstDist, quantisationMaxRel);
+        const uint32_t comp = component[partition.first[p].seedVertex];
+        firstRecords.emplace_back(begin, m.rows, m.rows, matrixBegin, scale, comp);
+    }
+
+    auto flatten = [](const std::vector<std::vector<fb::Membership>>& lists, std::vector<uint32_t>& begin,
+                      std::vector<fb::Membership>& all) {
+        begin.assign(1, 0);
+        for (const auto& l : lists) {
+            all.insert(all.end(), l.begin(), l.end());
+            begin.push_back(uint32_t(all.size()));
+        }
+    };
+    std::vector<uint32_t> secondBegin, firstBegin;
+    std::vector<fb::Membership> secondAll, firstAll;
+    flatten(secondOf, secondBegin, secondAll);
+    flatten(firstOf, firstBegin, firstAll);
+
+    std::vector<float> positions(size_t(V) * 3);
+    for (uint32_t v = 0; v < V; ++v) {
+        positions[3 * v] = float(mesh.positions[v].x);
+        positions[3 * v + 1] = float(mesh.positions[v].y);
+        positions[3 * v + 2] = float(mesh.positions[v].z);
+    }
+    std::vector<uint8_t> flags(N, 0);
+    for (size_t n = 0; n < N; ++n) flags[n] = secondInactive[nodeVertex[n]] ? 1 : 0;
+
+    flatbuffers::FlatBufferBuilder b(size_t(64) << 20);
+    auto posV = b.CreateVector(positions);
+    auto vpV = b.CreateVector(vertexPatch);
+    auto vsV = b.CreateVector(vertexSlot);
+    auto nvV = b.CreateVector(nodeVertex);
+    auto nfV = b.CreateVector(flags);
+    auto nsbV = b.CreateVector(secondBegin);
+    auto nsV = b.CreateVectorOfStructs(secondAll);
+    auto nfbV = b.CreateVector(firstBegin);
+    auto nflV = b.CreateVectorOfStructs(firstAll);
+    auto spV = b.CreateVectorOfStructs(secondRecords);
+    auto fpV = b.CreateVectorOfStructs(firstRecords);
+    auto slV = b.CreateVector(slots);
+    auto sdV = b.CreateVector(secondDist);
+    auto fdV = b.CreateVector(firstDist);
+    fb::GraphBuilder g(b);
+    g.add_vertex_count(V);
+    g.add_bbox_diagonal(float(params.bboxDiagonal));
+    g.add_positions(posV);
+    g.add_vertex_patch(vpV);
+    g.add_vertex_slot(vsV);
+    g.add_node_vertex(nvV);
+    g.add_node_flags(nfV);
+    g.add_node_second_begin(nsbV);
+    g.add_node_second(nsV);
+    g.add_node_first_begin(nfbV);
+    g.add_node_first(nflV);
+    g.add_second_patches(spV);
+    g.add_first_patches(fpV);
+    g.add_slots(slV);
+    g.add_second_distances(sdV);
+    g.add_first_distances(fdV);
+    g.add_seed(params.seed);
+    g.add_n1(params.n1);
+    g.add_n2(params.n2);
+    g.add_delta(float(params.delta));
+    g.add_margin_rings(params.marginRings);
+    fb::FinishGraphBuffer(b, g.Finish());
+    return std::vector<uint8_t>(b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize());
+}
+
+std::vector<uint8_t> packContainer(const std::vector<uint8_t>& flatbuffer, bool compress, int level) {
+    std::vector<uint8_t> out(VG_CONTAINER_HEADER_SIZE);
+    if (compress) {
+        out.resize(VG_CONTAINER_HEADER_SIZE + ZSTD_compressBound(flatbuffer.size()));
+        const size_t n = ZSTD_compress(out.data() + VG_CONTAINER_HEADER_SIZE, out.size() - VG_CONTAINER_HEADER_SIZE,
+                                       flatbuffer.data(), flatbuffer.size(), level);
+        if (ZSTD_isError(n)) throw std::runtime_error(std::string("zstd compression failed: ") + ZSTD_getErrorName(n));
+        out.resize(VG_CONTAINER_HEADER_SIZE + n);
+    } else {
+        out.resize(VG_CONTAINER_HEADER_SIZE + flatbuffer.size());
+        if (!flatbuffer.empty()) std::memcpy(out.data() + VG_CONTAINER_HEADER_SIZE, flatbuffer.data(), flatbuffer.size());
+    }
+    unsigned char* h = out.data();
+    std::memcpy(h, VG_CONTAINER_MAGIC, 8);  // includes the terminating zero
+    vg_store_le32(h + 8, VG_FORMAT_VERSION);
+    vg_store_le32(h + 12, compress ? VG_FLAG_ZSTD : 0u);
+    vg_store_le64(h + 16, out.size() - VG_CONTAINER_HEADER_SIZE);
+    vg_store_le64(h + 24, flatbuffer.size());
+    vg_store_le64(h + 32, vg_checksum64(h + VG_CONTAINER_HEADER_SIZE, out.size() - VG_CONTAINER_HEADER_SIZE));
+    return out;
+}
+
+void writeFileAtomically(const std::string& path, const std::vector<uint8_t>& bytes) {
+    const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+    FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+    const bool written = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
+    const int writeErrno = errno;
+    const bool closed = std::fclose(f) == 0;
+    if (!written || !closed) {
+        std::remove(tmp.c_str());
+        throw std::runtime_error("cannot write " + path + ": " + std::strerror(written ? errno : writeErrno));
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        const int e = errno;
+        std::remove(tmp.c_str());
+        throw std::runtime_error("cannot write " + path + ": " + std::strerror(e));
+    }
+}
+
+}  // namespace vorogeo

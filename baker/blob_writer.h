@@ -1,0 +1,38 @@
+// Serialising a baked graph: the flatbuffer of schema/vorogeo.fbs, the container around it
+// (schema/vorogeo_container.h), and writing a file so that a failure never leaves a
+// partial output behind.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "mesh.h"
+#include "partition.h"
+#include "patch_geodesics.h"
+
+namespace vorogeo {
+
+struct BlobParams {
+    uint64_t seed = 1;
+    uint32_t n1 = 0, n2 = 0, marginRings = 0;
+    double delta = 0;         // fraction of the bounding-box diagonal
+    double bboxDiagonal = 0;
+};
+
+// The flatbuffer. `first` holds the first-layer matrices over active nodes only;
+// `secondInactive` flags (per vertex) the nodes merged away in the second layer.
+// `quantisationMaxRel` receives the largest relative error of the 16-bit distances.
+std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partition,
+                                      const std::vector<PatchMatrix>& first, const std::vector<PatchMatrix>& second,
+                                      const std::vector<uint8_t>& secondInactive, const BlobParams& params,
+                                      double& quantisationMaxRel);
+
+// Header + payload (the flatbuffer, zstd-compressed or not).
+std::vector<uint8_t> packContainer(const std::vector<uint8_t>& flatbuffer, bool compress, int level);
+
+// Writes to "<path>.tmp-<pid>" then renames it over `path`; on any failure the temporary
+// file is removed and std::runtime_error names the path and the reason.
+void writeFileAtomically(const std::string& path, const std::vector<uint8_t>& bytes);
+
+}  // namespace vorogeo

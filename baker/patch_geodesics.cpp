@@ -1,0 +1,251 @@
+#include "patch_geodesics.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <mutex>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "geodesic_exact.h"
+
+namespace vorogeo {
+
+double PatchMatrix::at(uint32_t i, uint32_t j) const {
+    if (i == j) return 0.0;
+    if (i > j) std::swap(i, j);
+    return upper[upperIndex(rows, i, j)];
+}
+
+namespace {
+
+template <class F>
+void forEachFaceAround(const Mesh& mesh, uint32_t v, F&& f) {
+    const int32_t start = mesh.vertexOut[v];
+    if (start < 0) return;
+    int32_t h = start;
+    do {
+        f(uint32_t(Mesh::faceOf(h)));
+        h = mesh.nextAroundVertex(h);
+    } while (h >= 0 && h != start);
+}
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Local order of one patch: vertices shared with another patch of the layer first.
+void orderPatch(const Patch& patch, const std::vector<uint8_t>& sharing, PatchMatrix& out) {
+    std::vector<uint32_t> all(patch.border);
+    all.insert(all.end(), patch.interior.begin(), patch.interior.end());
+    std::sort(all.begin(), all.end());
+    out.vertices.clear();
+    for (uint32_t v : all)
+        if (sharing[v] >= 2) out.vertices.push_back(v);
+    out.nodeCount = uint32_t(out.vertices.size());
+    for (uint32_t v : all)
+        if (sharing[v] < 2) out.vertices.push_back(v);
+}
+
+// One layer: domains, then one exact run per matrix row (targets: the later rows).
+void computeLayer(const Mesh& mesh, const std::vector<Patch>& patches, const std::vector<uint32_t>& facePatch,
+                  bool nodesOnly, const PatchGeodesicsOptions& options, const char* stage,
+                  const StageProgress& progress, std::vector<PatchMatrix>& out, uint64_t& runs) {
+    const std::vector<uint8_t> sharing = patchesPerVertex(mesh, facePatch);
+    out.assign(patches.size(), PatchMatrix());
+    std::vector<std::unique_ptr<ExactGeodesic>> domains(patches.size());
+    tbb::parallel_for(size_t(0), patches.size(), [&](size_t p) {
+        PatchMatrix& m = out[p];
+        orderPatch(patches[p], sharing, m);
+        m.rows = nodesOnly ? m.nodeCount : uint32_t(m.vertices.size());
+        m.upper.assign(size_t(m.rows) * (m.rows > 0 ? m.rows - 1 : 0) / 2, kInfinity);
+        if (m.rows >= 2) domains[p] = std::make_unique<ExactGeodesic>(mesh, growFaces(mesh, patches[p].faces, options.marginRings));
+    });
+
+    struct Job {
+        uint32_t patch, row;
+    };
+    std::vector<Job> jobs;
+    for (uint32_t p = 0; p < patches.size(); ++p)
+        for (uint32_t r = 0; r + 1 < out[p].rows; ++r) jobs.push_back({p, r});
+    // Long rows first: better balance at the end of the parallel loop.
+    std::stable_sort(jobs.begin(), jobs.end(), [&](const Job& a, const Job& b) {
+        return out[a.patch].rows - a.row > out[b.patch].rows - b.row;
+    });
+    runs += jobs.size();
+
+    struct Scratch {
+        ExactWorkspace workspace;
+        ExactQuery query;
+        std::vector<double> dist;
+    };
+    tbb::enumerable_thread_specific<Scratch> scratch;
+    std::atomic<size_t> done{0};
+    std::mutex progressMutex;
+    const size_t step = std::max<size_t>(1, jobs.size() / 200);
+    tbb::parallel_for(size_t(0), jobs.size(), [&](size_t k) {
+        const Job job = jobs[k];
+        PatchMatrix& m = out[job.patch];
+        const ExactGeodesic& geo = *domains[job.patch];
+        Scratch& s = scratch.local();
+        s.query.sources.assign(1, GeodesicSource::atVertex(uint32_t(geo.localVertex(m.vertices[job.row]))));
+        s.query.targets.clear();
+        for (uint32_t j = job.row + 1; j < m.rows; ++j) s.query.targets.push_back(uint32_t(geo.localVertex(m.vertices[j])));
+        s.workspace.run(geo, s.query, s.dist);
+        for (uint32_t j = job.row + 1; j < m.rows; ++j)
+            m.upper[upperIndex(m.rows, job.row, j)] = s.dist[s.query.targets[j - job.row - 1]];
+        const size_t n = ++done;
+        if (progress && (n % step == 0 || n == jobs.size())) {
+            std::lock_guard<std::mutex> lock(progressMutex);
+            progress(stage, double(n) / double(jobs.size()));
+        }
+    });
+}
+
+// Dijkstra over a small weighted graph in CSR form, stopping once `targets` are settled.
+struct LocalGraph {
+    std::vector<uint32_t> offsets, adj;
+    std::vector<double> weight;
+};
+
+void localDijkstra(const LocalGraph& g, uint32_t source, const std::vector<uint32_t>& targets, std::vector<double>& dist,
+                   std::vector<std::pair<double, uint32_t>>& heap, std::vector<uint8_t>& settled) {
+    const size_t n = g.offsets.size() - 1;
+    dist.assign(n, kInfinity);
+    settled.assign(n, 0);
+    size_t remaining = targets.size();
+    std::vector<uint8_t> isTarget;  // small: only this patch's nodes
+    isTarget.assign(n, 0);
+    for (uint32_t t : targets) isTarget[t] = 1;
+    heap.clear();
+    dist[source] = 0;
+    heap.push_back({0.0, source});
+    auto greater = [](const std::pair<double, uint32_t>& a, const std::pair<double, uint32_t>& b) { return a > b; };
+    while (!heap.empty() && remaining > 0) {
+        std::pop_heap(heap.begin(), heap.end(), greater);
+        const auto [d, u] = heap.back();
+        heap.pop_back();
+        if (settled[u]) continue;
+        settled[u] = 1;
+        if (isTarget[u]) --remaining;
+        for (uint32_t k = g.offsets[u]; k < g.offsets[u + 1]; ++k) {
+            const uint32_t v = g.adj[k];
+            const double nd = d + g.weight[k];
+            if (nd < dist[v]) {
+                dist[v] = nd;
+                heap.push_back({nd, v});
+                std::push_heap(heap.begin(), heap.end(), greater);
+            }
+        }
+    }
+}
+
+}  // namespace
+
+void composeFirstLayer(const Mesh& mesh, const Partition& partition, const std::vector<PatchMatrix>& second,
+                       std::vector<PatchMatrix>& first) {
+    const std::vector<uint8_t> sharing = patchesPerVertex(mesh, partition.faceFirst);
+    std::vector<std::vector<uint32_t>> children(partition.first.size());
+    for (uint32_t p = 0; p < partition.second.size(); ++p) children[partition.second[p].parent].push_back(p);
+    first.assign(partition.first.size(), PatchMatrix());
+    tbb::parallel_for(size_t(0), partition.first.size(), [&](size_t f) {
+        PatchMatrix& m = first[f];
+        orderPatch(partition.first[f], sharing, m);
+        m.rows = m.nodeCount;
+        m.upper.assign(size_t(m.rows) * (m.rows > 0 ? m.rows - 1 : 0) / 2, kInfinity);
+        if (m.rows < 2) return;
+        // Local ids for the second-layer nodes inside this first-layer patch.
+        std::vector<uint32_t> nodes;
+        for (uint32_t c : children[f]) nodes.insert(nodes.end(), second[c].vertices.begin(), second[c].vertices.begin() + second[c].nodeCount);
+        std::sort(nodes.begin(), nodes.end());
+        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+        auto local = [&](uint32_t v) { return uint32_t(std::lower_bound(nodes.begin(), nodes.end(), v) - nodes.begin()); };
+        LocalGraph g;
+        g.offsets.assign(nodes.size() + 1, 0);
+        for (uint32_t c : children[f]) {
+            const PatchMatrix& s = second[c];
+            for (uint32_t i = 0; i < s.nodeCount; ++i) g.offsets[local(s.vertices[i]) + 1] += s.nodeCount - 1;
+        }
+        for (size_t i = 0; i < nodes.size(); ++i) g.offsets[i + 1] += g.offsets[i];
+        g.adj.resize(g.offsets.back());
+        g.weight.resize(g.offsets.back());
+        std::vector<uint32_t> fill(g.offsets.begin(), g.offsets.end() - 1);
+        for (uint32_t c : children[f]) {
+            const PatchMatrix& s = second[c];
+            for (uint32_t i = 0; i < s.nodeCount; ++i) {
+                const uint32_t a = local(s.vertices[i]);
+                for (uint32_t j = 0; j < s.nodeCount; ++j) {
+                    if (i == j) continue;
+                    g.adj[fill[a]] = local(s.vertices[j]);
+                    g.weight[fill[a]++] = s.at(i, j);
+                }
+            }
+        }
+        std::vector<uint32_t> rowLocal(m.rows);
+        for (uint32_t i = 0; i < m.rows; ++i) rowLocal[i] = local(m.vertices[i]);
+        std::vector<double> dist;
+        std::vector<std::pair<double, uint32_t>> heap;
+        std::vector<uint8_t> settled;
+        std::vector<uint32_t> targets;
+        for (uint32_t i = 0; i + 1 < m.rows; ++i) {
+            targets.assign(rowLocal.begin() + i + 1, rowLocal.end());
+            localDijkstra(g, rowLocal[i], targets, dist, heap, settled);
+            for (uint32_t j = i + 1; j < m.rows; ++j) m.upper[upperIndex(m.rows, i, j)] = dist[rowLocal[j]];
+        }
+    });
+}
+
+std::vector<uint8_t> patchesPerVertex(const Mesh& mesh, const std::vector<uint32_t>& facePatch) {
+    std::vector<uint8_t> count(mesh.vertexCount(), 0);
+    std::vector<uint32_t> seen;
+    for (uint32_t v = 0; v < mesh.vertexCount(); ++v) {
+        seen.clear();
+        forEachFaceAround(mesh, v, [&](uint32_t f) { seen.push_back(facePatch[f]); });
+        std::sort(seen.begin(), seen.end());
+        count[v] = uint8_t(std::min<size_t>(255, std::unique(seen.begin(), seen.end()) - seen.begin()));
+    }
+    return count;
+}
+
+std::vector<uint32_t> growFaces(const Mesh& mesh, const std::vector<uint32_t>& faces, uint32_t rings) {
+    std::vector<uint32_t> result(faces);
+    std::sort(result.begin(), result.end());
+    std::vector<uint32_t> verts;
+    for (uint32_t r = 0; r < rings; ++r) {
+        verts.clear();
+        for (uint32_t f : result)
+            for (uint32_t v : mesh.faces[f]) verts.push_back(v);
+        std::sort(verts.begin(), verts.end());
+        verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+        std::vector<uint32_t> grown(result);
+        for (uint32_t v : verts) forEachFaceAround(mesh, v, [&](uint32_t f) { grown.push_back(f); });
+        std::sort(grown.begin(), grown.end());
+        grown.erase(std::unique(grown.begin(), grown.end()), grown.end());
+        if (grown.size() == result.size()) break;
+        result.swap(grown);
+    }
+    return result;
+}
+
+PatchGeodesics computePatchGeodesics(const Mesh& mesh, const Partition& partition,
+                                     const PatchGeodesicsOptions& options, const StageProgress& progress) {
+    PatchGeodesics result;
+    auto t0 = std::chrono::steady_clock::now();
+    computeLayer(mesh, partition.second, partition.faceSecond, false, options, "second-layer geodesics", progress,
+                 result.second, result.stats.sourceRuns);
+    result.stats.secondLayerSeconds = secondsSince(t0);
+    t0 = std::chrono::steady_clock::now();
+    if (options.firstLayer == PatchGeodesicsOptions::FirstLayer::Exact)
+        computeLayer(mesh, partition.first, partition.faceFirst, true, options, "first-layer geodesics", progress,
+                     result.first, result.stats.sourceRuns);
+    else
+        composeFirstLayer(mesh, partition, result.second, result.first);
+    result.stats.firstLayerSeconds = secondsSince(t0);
+    for (const auto* layer : {&result.first, &result.second})
+        for (const PatchMatrix& m : *layer) result.stats.storedDistances += m.upper.size();
+    return result;
+}
+
+}  // namespace vorogeo

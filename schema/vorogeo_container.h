@@ -1,0 +1,79 @@
+/* The vorogeo blob container (format version 1), shared by the baker and the runtime.
+ *
+ *   offset  size  field
+ *        0     8  magic "VOROGEO\0"
+ *        8     4  format version (little-endian uint32) = VG_FORMAT_VERSION
+ *       12     4  flags: bit 0 = payload is one zstd frame; other bits must be 0
+ *       16     8  payload size in bytes (what follows the header)
+ *       24     8  flatbuffer size in bytes (payload size when not compressed)
+ *       32     8  checksum of the payload bytes (vg_checksum64 below)
+ *       40        payload: the flatbuffer of schema/vorogeo.fbs, or a zstd frame holding it
+ *
+ * The header is 40 bytes, so an uncompressed flatbuffer starts 8-byte aligned in a mapped
+ * file and can be used in place. Plain C99, no dependencies. */
+#ifndef VOROGEO_CONTAINER_H
+#define VOROGEO_CONTAINER_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#define VG_CONTAINER_MAGIC "VOROGEO"
+#define VG_CONTAINER_HEADER_SIZE 40u
+#define VG_FORMAT_VERSION 1u
+#define VG_FLAG_ZSTD 1u
+
+static inline uint64_t vg_load_le64(const unsigned char* p) {
+    uint64_t v = 0;
+    int i;
+    for (i = 7; i >= 0; --i) v = (v << 8) | p[i];
+    return v;
+}
+
+static inline uint32_t vg_load_le32(const unsigned char* p) {
+    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
+}
+
+static inline void vg_store_le64(unsigned char* p, uint64_t v) {
+    int i;
+    for (i = 0; i < 8; ++i) p[i] = (unsigned char)(v >> (8 * i));
+}
+
+static inline void vg_store_le32(unsigned char* p, uint32_t v) {
+    int i;
+    for (i = 0; i < 4; ++i) p[i] = (unsigned char)(v >> (8 * i));
+}
+
+static inline uint64_t vg_rotl64(uint64_t x, int r) { return (x << r) | (x >> (64 - r)); }
+
+/* A 64-bit checksum over 8-byte words (two multiplies per word, a murmur-style final mix):
+ * it catches truncation, flipped bits and swapped blocks; it is not cryptographic. */
+static inline uint64_t vg_checksum64(const void* data, size_t size) {
+    const unsigned char* p = (const unsigned char*)data;
+    const uint64_t k1 = 0x9E3779B185EBCA87ull, k2 = 0xC2B2AE3D27D4EB4Full;
+    uint64_t h = 0x27D4EB2F165667C5ull ^ ((uint64_t)size * k1);
+    size_t i = 0;
+    for (; i + 8 <= size; i += 8) {
+        uint64_t w;
+        memcpy(&w, p + i, 8); /* the checksum is defined on little-endian words */
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+        w = vg_load_le64(p + i);
+#endif
+        h ^= vg_rotl64(w * k2, 31) * k1;
+        h = vg_rotl64(h, 27) * k1 + 0x52DCE729u;
+    }
+    {
+        uint64_t tail = 0;
+        int shift = 0;
+        for (; i < size; ++i, shift += 8) tail |= (uint64_t)p[i] << shift;
+        h ^= vg_rotl64(tail * k2, 31) * k1;
+    }
+    h ^= h >> 33;
+    h *= 0xFF51AFD7ED558CCDull;
+    h ^= h >> 33;
+    h *= 0xC4CEB9FE1A85EC53ull;
+    h ^= h >> 33;
+    return h;
+}
+
+#endif /* VOROGEO_CONTAINER_H */

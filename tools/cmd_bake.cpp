@@ -1,0 +1,206 @@
+// vorogeo bake: mesh -> .vgeo blob (partition, patch geodesics, overlay, pruning, blob).
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <unistd.h>
+
+#include "bake.h"
+#include "blob_writer.h"
+#include "cli.h"
+#include "timing.h"
+#include "tool_mesh.h"
+
+namespace vorogeo::tools {
+
+namespace {
+
+const char* kUsage =
+    "usage: vorogeo bake MESH -o OUT.vgeo [--n1 N] [--n2 N] [--delta F] [--seed S] [--threads N]\n"
+    "                    [--no-compress] [--report FILE.json] [--margin-rings R] [--exact-first-layer]\n"
+    "                    [--repair] [--quiet]\n"
+    "  Precomputes the two-layer patch graph of MESH and writes it as a blob for the runtime.\n"
+    "  --n1       first-layer patches (default: one per ~3,000 vertices)\n"
+    "  --n2       second-layer patches per first-layer patch (default: one per ~100 vertices)\n"
+    "  --delta    pruning threshold as a fraction of the bounding-box diagonal (default 0:\n"
+    "             no pruning; larger is faster and less accurate)\n"
+    "  --seed     seed of the sampling (default 1); same mesh, options and seed give the same bytes\n"
+    "  --threads  worker threads (default: all cores)\n"
+    "  --no-compress  store the flatbuffer uncompressed, for zero-copy mapping\n"
+    "  --report   write a JSON report (times, sizes, graph, peak memory)\n"
+    "  --margin-rings  rings of faces around each patch for its geodesics (default 1)\n"
+    "  --exact-first-layer  first-layer distances by exact runs, as the thesis (much slower)\n";
+
+// Progress on a terminal: one bar per stage, redrawn in place; otherwise one line per stage.
+class ProgressPrinter {
+public:
+    explicit ProgressPrinter(bool quiet) : quiet_(quiet), tty_(::isatty(2) != 0) {}
+    void operator()(const char* stage, double fraction) {
+        if (quiet_) return;
+        const bool newStage = stage_ != stage;
+        if (newStage && tty_ && !stage_.empty()) std::fprintf(stderr, "\n");
+        if (newStage) {
+            stage_ = stage;
+            stageClock_ = Stopwatch();
+            if (!tty_) std::fprintf(stderr, "bake: %s ...\n", stage);
+        }
+        if (tty_) {
+            const int width = 30, filled = int(std::lround(fraction * width));
+            std::fprintf(stderr, "\r  %-24s [%s%s] %3d%%", stage, std::string(size_t(filled), '#').c_str(),
+                         std::string(size_t(width - filled), ' ').c_str(), int(std::lround(fraction * 100)));
+            std::fflush(stderr);
+        }
+    }
+    void finish() {
+        if (!quiet_ && tty_ && !stage_.empty()) std::fprintf(stderr, "\n");
+    }
+
+private:
+    bool quiet_, tty_;
+    std::string stage_;
+    Stopwatch stageClock_;
+};
+
+uint32_t positiveCount(const cli::Args& args, const char* name) {
+    if (!args.has(name)) return 0;
+    const long long v = args.integer(name, 0);
+    if (v < 1 || v > 0x7fffffffLL) throw cli::UsageError(std::string(name) + " must be at least 1");
+    return uint32_t(v);
+}
+
+void writeReport(const std::string& path, const BakeReport& r, int threads, double wall, double rss) {
+    std::ofstream out(path);
+    if (!out) throw std::runtime_error("cannot write report " + path);
+    char buf[256];
+    out << "{\n";
+    auto kv = [&](const char* key, const std::string& value, bool last = false) {
+        out << "  \"" << key << "\": " << value << (last ? "\n" : ",\n");
+    };
+    auto num = [&](double v, const char* fmt = "%.6g") {
+        std::snprintf(buf, sizeof buf, fmt, v);
+        return std::string(buf);
+    };
+    kv("vertices", std::to_string(r.vertices));
+    kv("faces", std::to_string(r.faces));
+    kv("threads", std::to_string(threads));
+    kv("wall_s", num(wall, "%.3f"));
+    kv("peak_rss_mb", num(rss, "%.1f"));
+    kv("blob_bytes", std::to_string(r.blobBytes));
+    kv("flatbuffer_bytes", std::to_string(r.flatbufferBytes));
+    kv("bytes_per_vertex", num(double(r.blobBytes) / std::max(1u, r.vertices), "%.2f"));
+    kv("compressed", r.compressed ? "true" : "false");
+    std::string stages = "{";
+    for (size_t i = 0; i < r.stages.size(); ++i)
+        stages += (i ? ", \"" : "\"") + r.stages[i].name + "\": " + num(r.stages[i].seconds, "%.3f");
+    kv("stages_s", stages + "}");
+    kv("first_patches", std::to_string(r.firstPatches));
+    kv("second_patches", std::to_string(r.secondPatches));
+    kv("first_bv", std::to_string(r.firstBorder));
+    kv("first_iv", std::to_string(r.firstInterior));
+    kv("second_bv", std::to_string(r.secondBorder));
+    kv("second_iv", std::to_string(r.secondInterior));
+    kv("delta", num(r.delta));
+    kv("delta_absolute", num(r.deltaAbsolute));
+    kv("delta_second_absolute", num(r.deltaSecond));
+    auto prune = [&](const PruneStats& p) {
+        return "{\"nodes\": " + std::to_string(p.nodes) + ", \"nodes_pruned\": " + std::to_string(p.prunedNodes) +
+               ", \"edges\": " + std::to_string(p.edges) + ", \"edges_pruned\": " + std::to_string(p.prunedEdges) + "}";
+    };
+    kv("first_graph", prune(r.firstPrune));
+    kv("second_graph", prune(r.secondPrune));
+    kv("exact_runs", std::to_string(r.sourceRuns));
+    kv("quantisation_max_rel_error", num(r.quantisationMaxRel, "%.3e"), true);
+    out << "}\n";
+    if (!out) throw std::runtime_error("cannot write report " + path);
+}
+
+void printSummary(const BakeReport& r, const std::string& outPath, int threads, double wall, double rss) {
+    std::printf("baked %s: %u vertices, %u faces, %d threads, %.2f s, peak memory %.0f MB\n", outPath.c_str(),
+                r.vertices, r.faces, threads, wall, rss);
+    std::printf("  stages:");
+    for (const BakeStage& s : r.stages) std::printf(" %s %.2f s;", s.name.c_str(), s.seconds);
+    std::printf("\n  first layer:  %zu patches, Bv %llu, Iv %llu; graph %llu nodes (%llu pruned), %llu edges (%llu pruned)\n",
+                r.firstPatches, (unsigned long long)r.firstBorder, (unsigned long long)r.firstInterior,
+                (unsigned long long)r.firstPrune.nodes, (unsigned long long)r.firstPrune.prunedNodes,
+                (unsigned long long)r.firstPrune.edges, (unsigned long long)r.firstPrune.prunedEdges);
+    std::printf("  second layer: %zu patches, Bv %llu, Iv %llu; graph %llu nodes (%llu pruned), %llu edges (%llu pruned)\n",
+                r.secondPatches, (unsigned long long)r.secondBorder, (unsigned long long)r.secondInterior,
+                (unsigned long long)r.secondPrune.nodes, (unsigned long long)r.secondPrune.prunedNodes,
+                (unsigned long long)r.secondPrune.edges, (unsigned long long)r.secondPrune.prunedEdges);
+    std::printf("  pruning delta %.3g x diagonal (%.3g; second layer %.3g); 16-bit distances: max relative error %.2e\n",
+                r.delta, r.deltaAbsolute, r.deltaSecond, r.quantisationMaxRel);
+    std::printf("  blob %zu bytes (%.1f bytes per vertex, %s; flatbuffer %zu bytes)\n", r.blobBytes,
+                double(r.blobBytes) / std::max(1u, r.vertices), r.compressed ? "zstd" : "uncompressed",
+                r.flatbufferBytes);
+}
+
+}  // namespace
+
+int runBake(int argc, char** argv) {
+    const cli::Args args(argc, argv, {"-o", "--out", "--n1", "--n2", "--delta", "--seed", "--threads", "--report", "--margin-rings"},
+                         {"--no-compress", "--exact-first-layer", "--repair", "--quiet", "--help"});
+    if (args.flag("--help")) {
+        std::printf("%s", kUsage);
+        return 0;
+    }
+    if (args.positional().size() != 1) throw cli::UsageError(std::string("expected one mesh file\n") + kUsage);
+    const std::string outPath = args.has("-o") ? args.str("-o") : args.str("--out");
+    if (outPath.empty()) throw cli::UsageError("missing -o OUT.vgeo");
+
+    BakeOptions o;
+    o.n1 = positiveCount(args, "--n1");
+    o.n2 = positiveCount(args, "--n2");
+    if (args.has("--delta")) {
+        o.delta = args.number("--delta", 0);
+        if (!(o.delta >= 0 && o.delta < 1)) throw cli::UsageError("--delta must be in [0, 1) (a fraction of the bounding-box diagonal)");
+    }
+    const long long seed = args.integer("--seed", 1);
+    if (seed < 0) throw cli::UsageError("--seed must be >= 0");
+    o.seed = uint64_t(seed);
+    const long long rings = args.integer("--margin-rings", 1);
+    if (rings < 0 || rings > 8) throw cli::UsageError("--margin-rings must be in [0, 8]");
+    o.marginRings = uint32_t(rings);
+    o.exactFirstLayer = args.flag("--exact-first-layer");
+    o.compress = !args.flag("--no-compress");
+    const long long threadsArg = args.integer("--threads", 0);
+    if (threadsArg < 0 || threadsArg > 1024) throw cli::UsageError("--threads must be in [1, 1024]");
+    const int threads = threadsArg > 0 ? int(threadsArg) : tbb::info::default_concurrency();
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+
+    Stopwatch wall;
+    {  // fail before the bake, not after it, if the output cannot be written
+        const std::string probe = outPath + ".tmp-" + std::to_string(::getpid());
+        FILE* f = std::fopen(probe.c_str(), "wb");
+        if (!f) {
+            std::fprintf(stderr, "vorogeo bake: cannot write %s: %s\n", outPath.c_str(), std::strerror(errno));
+            return 1;
+        }
+        std::fclose(f);
+        std::remove(probe.c_str());
+    }
+    Mesh mesh;
+    if (!loadMeshForCommand("bake", args.positional()[0], args.flag("--repair"), mesh)) return 1;
+    BakeReport report;
+    ProgressPrinter progress(args.flag("--quiet"));
+    std::vector<uint8_t> blob;
+    try {
+        blob = bakeMesh(mesh, o, report, [&](const char* stage, double f) { progress(stage, f); });
+    } catch (const std::invalid_argument& e) {
+        progress.finish();
+        throw cli::UsageError(e.what());
+    }
+    progress.finish();
+    writeFileAtomically(outPath, blob);
+    const double seconds = wall.seconds(), rss = peakRssMb();
+    if (args.has("--report")) writeReport(args.str("--report"), report, threads, seconds, rss);
+    if (!args.flag("--quiet")) printSummary(report, outPath, threads, seconds, rss);
+    return 0;
+}
+
+}  // namespace vorogeo::tools

@@ -95,6 +95,7 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
     clock.restart();  // the two entries above time this stage
 
     const double diagonal = computeStats(mesh).bboxDiag;
+    report.bboxDiagonal = diagonal;
     report.delta = options.delta < 0 ? kDefaultDelta : options.delta;
     report.deltaAbsolute = report.delta * diagonal;
     // delta_sl = delta / gamma, gamma = second-layer patches per first-layer patch (thesis eq. 3.1).
@@ -116,7 +117,7 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
     params.bboxDiagonal = diagonal;
     if (progress) progress("writing blob", 0.0);
     const std::vector<uint8_t> buffer = buildGraphBuffer(mesh, partition, geodesics.first, geodesics.second,
-                                                         secondInactive, params, report.quantisationMaxRel);
+                                                         secondInactive, params, report.quantisationMaxAbs);
     report.flatbufferBytes = buffer.size();
     clock.end("serialise");
     std::vector<uint8_t> blob = packContainer(buffer, options.compress, options.compressionLevel);

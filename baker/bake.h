@@ -35,13 +35,14 @@ struct BakeReport {
     uint32_t vertices = 0, faces = 0;
     uint32_t n1 = 0, n2 = 0;  // effective automatic or requested values
     double delta = 0, deltaAbsolute = 0, deltaSecond = 0;
+    double bboxDiagonal = 0;
     std::vector<BakeStage> stages;
     size_t firstPatches = 0, secondPatches = 0;
     uint64_t firstBorder = 0, firstInterior = 0;   // Bv / Iv summed over first-layer patches
     uint64_t secondBorder = 0, secondInterior = 0; // the same over second-layer patches
     PruneStats firstPrune, secondPrune;
     uint64_t sourceRuns = 0;
-    double quantisationMaxRel = 0;  // largest relative error added by 16-bit distances
+    double quantisationMaxAbs = 0;  // largest absolute error added by 12-bit distances
     size_t flatbufferBytes = 0, blobBytes = 0;
     bool compressed = true;
 };

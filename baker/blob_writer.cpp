@@ -18,23 +18,40 @@ namespace vorogeo {
 
 namespace {
 
-constexpr uint16_t kNoPath = 0xFFFF;
-constexpr double kLargestQuantum = 65534.0;
+constexpr uint16_t kNoPath = 4095;
+constexpr double kLargestQuantum = 4094.0;
 
-// Appends one patch matrix as uint16 quanta; returns the scale.
-float quantise(const PatchMatrix& m, std::vector<uint16_t>& out, double& maxRel) {
+// 12-bit quanta packed two per three bytes (see the schema).
+struct Packed12 {
+    std::vector<uint8_t> bytes;
+    size_t count = 0;
+    void push(uint16_t q) {
+        if (count % 2 == 0) {
+            bytes.push_back(uint8_t(q & 0xFF));
+            bytes.push_back(uint8_t(q >> 8));
+        } else {
+            bytes.back() = uint8_t(bytes.back() | ((q & 0x0F) << 4));
+            bytes.push_back(uint8_t(q >> 4));
+        }
+        ++count;
+    }
+    size_t size() const { return count; }
+};
+
+// Appends one patch matrix as 12-bit quanta; returns the scale.
+float quantise(const PatchMatrix& m, Packed12& out, double& maxAbs) {
     double largest = 0;
     for (double d : m.upper)
         if (std::isfinite(d)) largest = std::max(largest, d);
     const float scale = largest > 0 ? float(largest / kLargestQuantum) : 1.0f;
     for (double d : m.upper) {
         if (!std::isfinite(d)) {
-            out.push_back(kNoPath);
+            out.push(kNoPath);
             continue;
         }
         const double q = std::min(kLargestQuantum, std::round(d / double(scale)));
-        out.push_back(uint16_t(q));
-        if (d > 0) maxRel = std::max(maxRel, std::fabs(q * double(scale) - d) / d);
+        out.push(uint16_t(q));
+        maxAbs = std::max(maxAbs, std::fabs(q * double(scale) - d));
     }
     return scale;
 }
@@ -44,9 +61,9 @@ float quantise(const PatchMatrix& m, std::vector<uint16_t>& out, double& maxRel)
 std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partition,
                                       const std::vector<PatchMatrix>& first, const std::vector<PatchMatrix>& second,
                                       const std::vector<uint8_t>& secondInactive, const BlobParams& params,
-                                      double& quantisationMaxRel) {
+                                      double& quantisationMaxAbs) {
     const uint32_t V = mesh.vertexCount();
-    quantisationMaxRel = 0;
+    quantisationMaxAbs = 0;
 
     // Nodes: vertices in the node part of a second-layer patch, by increasing vertex id.
     std::vector<uint32_t> nodeOf(V, UINT32_MAX);
@@ -60,10 +77,11 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
         }
     const size_t N = nodeVertex.size();
 
-    std::vector<uint32_t> vertexPatch(V, UINT32_MAX), vertexSlot(V, UINT32_MAX);
+    std::vector<uint32_t> vertexPatch(V, UINT32_MAX);
+    std::vector<uint16_t> vertexSlot(V, 0);
     std::vector<std::vector<fb::Membership>> secondOf(N), firstOf(N);
     std::vector<uint32_t> slots;
-    std::vector<uint16_t> secondDist, firstDist;
+    Packed12 secondDist, firstDist;
     std::vector<fb::PatchRecord> secondRecords, firstRecords;
 
     for (uint32_t p = 0; p < second.size(); ++p) {
@@ -77,7 +95,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
             const uint32_t v = m.vertices[i];
             if (vertexPatch[v] == UINT32_MAX) {
                 vertexPatch[v] = p;
-                vertexSlot[v] = i;
+                vertexSlot[v] = uint16_t(i);
             }
             if (i < m.nodeCount) {
                 secondOf[nodeOf[v]].push_back(fb::Membership(p, i));
@@ -86,7 +104,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
                 slots.push_back(v);
             }
         }
-        const float scale = quantise(m, secondDist, quantisationMaxRel);
+        const float scale = quantise(m, secondDist, quantisationMaxAbs);
         secondRecords.emplace_back(begin, uint32_t(m.vertices.size()), m.nodeCount, matrixBegin, scale,
                                    partition.second[p].parent);
     }
@@ -100,7 +118,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
             firstOf[nodeOf[m.vertices[i]]].push_back(fb::Membership(p, i));
             slots.push_back(nodeOf[m.vertices[i]]);
         }
-        const float scale = quantise(m, firstDist, quantisationMaxRel);
+        const float scale = quantise(m, firstDist, quantisationMaxAbs);
         const uint32_t comp = component[partition.first[p].seedVertex];
         firstRecords.emplace_back(begin, m.rows, m.rows, matrixBegin, scale, comp);
     }
@@ -140,8 +158,8 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     auto spV = b.CreateVectorOfStructs(secondRecords);
     auto fpV = b.CreateVectorOfStructs(firstRecords);
     auto slV = b.CreateVector(slots);
-    auto sdV = b.CreateVector(secondDist);
-    auto fdV = b.CreateVector(firstDist);
+    auto sdV = b.CreateVector(secondDist.bytes);
+    auto fdV = b.CreateVector(firstDist.bytes);
     fb::GraphBuilder g(b);
     g.add_vertex_count(V);
     g.add_bbox_diagonal(float(params.bboxDiagonal));

@@ -22,11 +22,11 @@ struct BlobParams {
 
 // The flatbuffer. `first` holds the first-layer matrices over active nodes only;
 // `secondInactive` flags (per vertex) the nodes merged away in the second layer.
-// `quantisationMaxRel` receives the largest relative error of the 16-bit distances.
+// `quantisationMaxAbs` receives the largest absolute error of the 12-bit distances.
 std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partition,
                                       const std::vector<PatchMatrix>& first, const std::vector<PatchMatrix>& second,
                                       const std::vector<uint8_t>& secondInactive, const BlobParams& params,
-                                      double& quantisationMaxRel);
+                                      double& quantisationMaxAbs);
 
 // Header + payload (the flatbuffer, zstd-compressed or not).
 std::vector<uint8_t> packContainer(const std::vector<uint8_t>& flatbuffer, bool compress, int level);

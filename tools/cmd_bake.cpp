@@ -115,7 +115,8 @@ void writeReport(const std::string& path, const BakeReport& r, int threads, doub
     kv("first_graph", prune(r.firstPrune));
     kv("second_graph", prune(r.secondPrune));
     kv("exact_runs", std::to_string(r.sourceRuns));
-    kv("quantisation_max_rel_error", num(r.quantisationMaxRel, "%.3e"), true);
+    kv("quantisation_max_abs_error", num(r.quantisationMaxAbs, "%.3e"));
+    kv("quantisation_max_abs_error_per_diagonal", num(r.quantisationMaxAbs / r.bboxDiagonal, "%.3e"), true);
     out << "}\n";
     if (!out) throw std::runtime_error("cannot write report " + path);
 }
@@ -133,8 +134,8 @@ void printSummary(const BakeReport& r, const std::string& outPath, int threads, 
                 r.secondPatches, (unsigned long long)r.secondBorder, (unsigned long long)r.secondInterior,
                 (unsigned long long)r.secondPrune.nodes, (unsigned long long)r.secondPrune.prunedNodes,
                 (unsigned long long)r.secondPrune.edges, (unsigned long long)r.secondPrune.prunedEdges);
-    std::printf("  pruning delta %.3g x diagonal (%.3g; second layer %.3g); 16-bit distances: max relative error %.2e\n",
-                r.delta, r.deltaAbsolute, r.deltaSecond, r.quantisationMaxRel);
+    std::printf("  pruning delta %.3g x diagonal (%.3g; second layer %.3g); 12-bit distances: max error %.2e (%.2e x diagonal)\n",
+                r.delta, r.deltaAbsolute, r.deltaSecond, r.quantisationMaxAbs, r.quantisationMaxAbs / r.bboxDiagonal);
     std::printf("  blob %zu bytes (%.1f bytes per vertex, %s; flatbuffer %zu bytes)\n", r.blobBytes,
                 double(r.blobBytes) / std::max(1u, r.vertices), r.compressed ? "zstd" : "uncompressed",
                 r.flatbufferBytes);

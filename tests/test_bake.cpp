@@ -1,0 +1,351 @@
+// The bake: blob structure and verification, determinism across thread counts, stored
+// distances against the exact engine, pruning, container rejection, the bake command.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <tbb/global_control.h>
+
+#include "bake.h"
+#include "blob_reader.h"
+#include "generators.h"
+#include "geodesic_exact.h"
+#include "mesh_io.h"
+#include "patch_geodesics.h"
+#include "test_helpers.h"
+#include "vorogeo_container.h"
+
+using namespace vorogeo;
+
+namespace {
+
+std::vector<uint8_t> bakeWith(const Mesh& mesh, BakeOptions o, int threads, BakeReport* reportOut = nullptr) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    BakeReport report;
+    std::vector<uint8_t> blob = bakeMesh(mesh, o, report);
+    if (reportOut) *reportOut = report;
+    return blob;
+}
+
+tools::BlobContents unpack(const std::vector<uint8_t>& blob) {
+    tools::BlobContents c;
+    std::string error;
+    INFO(error);
+    REQUIRE(tools::unpackBlob(blob, c, error));
+    return c;
+}
+
+// 12-bit entry k of a packed distance array (see schema/vorogeo.fbs).
+uint16_t entry12(const flatbuffers::Vector<uint8_t>& bytes, uint64_t k) {
+    const size_t b = size_t(3 * (k / 2));
+    return k % 2 == 0 ? uint16_t(bytes[b] | ((bytes[b + 1] & 0x0F) << 8)) : uint16_t((bytes[b + 1] >> 4) | (bytes[b + 2] << 4));
+}
+
+double storedDistance(const fb::PatchRecord& p, const flatbuffers::Vector<uint8_t>& bytes, uint32_t i, uint32_t j) {
+    if (i == j) return 0;
+    if (i > j) std::swap(i, j);
+    const uint64_t n = p.slot_count();
+    const uint16_t q = entry12(bytes, p.matrix_begin() + i * (2 * n - i - 1) / 2 + (j - i - 1));
+    return q == 4095 ? kInfinity : q * double(p.scale());
+}
+
+Mesh smallBumpy() { return bumpyTorus(60, 30); }  // 1,800 vertices, saddles everywhere
+
+}  // namespace
+
+TEST_CASE("bake: blob passes the container checks and the flatbuffers verifier, indices in range", "[bake]") {
+    const Mesh mesh = smallBumpy();
+    BakeReport report;
+    const std::vector<uint8_t> blob = bakeWith(mesh, BakeOptions(), 2, &report);
+    CHECK(report.blobBytes == blob.size());
+    const tools::BlobContents c = unpack(blob);
+    CHECK(c.compressed);
+    const fb::Graph* g = c.graph();
+    REQUIRE(g->vertex_count() == mesh.vertexCount());
+    REQUIRE(g->positions()->size() == 3 * size_t(mesh.vertexCount()));
+    const uint32_t N = g->node_vertex()->size();
+    REQUIRE(N > 0);
+    REQUIRE(g->node_second_begin()->size() == N + 1);
+    REQUIRE(g->node_first_begin()->size() == N + 1);
+    CHECK(g->node_second_begin()->Get(N) == g->node_second()->size());
+    CHECK(g->node_first_begin()->Get(N) == g->node_first()->size());
+    const auto* sp = g->second_patches();
+    const auto* fp = g->first_patches();
+    CHECK(sp->size() == report.secondPatches);
+    CHECK(fp->size() == report.firstPatches);
+    for (uint32_t v = 0; v < mesh.vertexCount(); ++v) {
+        const uint32_t p = g->vertex_patch()->Get(v);
+        REQUIRE(p < sp->size());
+        const auto* rec = sp->Get(p);
+        const uint32_t slot = g->vertex_slot()->Get(v);
+        REQUIRE(slot < rec->slot_count());
+        const uint32_t id = g->slots()->Get(rec->slot_begin() + slot);
+        // A slot holds a node id for the first node_count slots, else the vertex id.
+        CHECK((slot < rec->node_count() ? g->node_vertex()->Get(id) : id) == v);
+    }
+    for (uint32_t n = 0; n < N; ++n) {
+        for (uint32_t k = g->node_second_begin()->Get(n); k < g->node_second_begin()->Get(n + 1); ++k) {
+            const auto* m = g->node_second()->Get(k);
+            REQUIRE(m->patch() < sp->size());
+            REQUIRE(m->slot() < sp->Get(m->patch())->node_count());
+            CHECK(g->slots()->Get(sp->Get(m->patch())->slot_begin() + m->slot()) == n);
+        }
+        for (uint32_t k = g->node_first_begin()->Get(n); k < g->node_first_begin()->Get(n + 1); ++k) {
+            const auto* m = g->node_first()->Get(k);
+            REQUIRE(m->patch() < fp->size());
+            CHECK(g->slots()->Get(fp->Get(m->patch())->slot_begin() + m->slot()) == n);
+        }
+    }
+    uint64_t secondEntries = 0;
+    for (const auto* rec : *sp) {
+        CHECK(rec->parent() < fp->size());
+        CHECK(rec->matrix_begin() == secondEntries);
+        secondEntries += uint64_t(rec->slot_count()) * (rec->slot_count() - 1) / 2;
+    }
+    CHECK(g->second_distances()->size() == (secondEntries * 3 + 1) / 2);
+}
+
+TEST_CASE("bake: the same blob bytes for 1 and 2 threads", "[bake]") {
+    const Mesh mesh = smallBumpy();
+    BakeOptions o;
+    o.delta = 0.002;  // pruning on too
+    const std::vector<uint8_t> one = bakeWith(mesh, o, 1);
+    const std::vector<uint8_t> two = bakeWith(mesh, o, 2);
+    CHECK(one.size() == two.size());
+    CHECK(one == two);
+    o.seed = 7;  // and the seed matters
+    CHECK(bakeWith(mesh, o, 2) != two);
+}
+
+TEST_CASE("bake: --no-compress stores the same flatbuffer, uncompressed", "[bake]") {
+    const Mesh mesh = smallBumpy();
+    BakeOptions o;
+    const tools::BlobContents z = unpack(bakeWith(mesh, o, 2));
+    o.compress = false;
+    const std::vector<uint8_t> raw = bakeWith(mesh, o, 2);
+    const tools::BlobContents r = unpack(raw);
+    CHECK_FALSE(r.compressed);
+    CHECK(z.flatbuffer == r.flatbuffer);
+    CHECK(raw.size() == VG_CONTAINER_HEADER_SIZE + r.flatbuffer.size());
+}
+
+TEST_CASE("bake: second-layer entries equal exact runs on the patch plus its margin ring", "[bake]") {
+    const Mesh mesh = smallBumpy();
+    const tools::BlobContents c = unpack(bakeWith(mesh, BakeOptions(), 2));
+    const fb::Graph* g = c.graph();
+    Partition partition = partitionMesh(mesh, PartitionOptions());  // the same partition the bake made
+    REQUIRE(partition.second.size() == g->second_patches()->size());
+    ExactWorkspace ws;
+    std::vector<double> dist;
+    size_t checked = 0;
+    for (uint32_t p = 0; p < partition.second.size(); p += 7) {
+        const auto* rec = g->second_patches()->Get(p);
+        const ExactGeodesic geo(mesh, growFaces(mesh, partition.second[p].faces, 1));
+        auto vertexOf = [&](uint32_t slot) {
+            const uint32_t id = g->slots()->Get(rec->slot_begin() + slot);
+            return slot < rec->node_count() ? g->node_vertex()->Get(id) : id;
+        };
+        for (uint32_t i = 0; i < rec->slot_count(); i += 5) {
+            ExactQuery q;
+            q.sources.push_back(GeodesicSource::atVertex(uint32_t(geo.localVertex(vertexOf(i)))));
+            ws.run(geo, q, dist);
+            for (uint32_t j = 0; j < rec->slot_count(); ++j) {
+                const double exact = dist[geo.localVertex(vertexOf(j))];
+                const double stored = storedDistance(*rec, *g->second_distances(), i, j);
+                REQUIRE(std::fabs(stored - exact) <= 0.5 * rec->scale() + 1e-12);
+                ++checked;
+            }
+        }
+    }
+    CHECK(checked > 1000);
+}
+
+TEST_CASE("bake: first-layer entries are the shortest second-layer node paths inside the first-layer patch", "[bake]") {
+    const Mesh mesh = smallBumpy();
+    BakeOptions o;
+    o.n1 = 3;
+    const tools::BlobContents c = unpack(bakeWith(mesh, o, 2));
+    const fb::Graph* g = c.graph();
+    const auto* sp = g->second_patches();
+    const uint32_t N = g->node_vertex()->size();
+    size_t checked = 0;
+    for (uint32_t f = 0; f < g->first_patches()->size(); ++f) {
+        const auto* rec = g->first_patches()->Get(f);
+        // Dijkstra over the node x node blocks of the second-layer patches inside f (dense, small).
+        double tolerance = 0.5 * rec->scale();
+        for (const auto* s : *sp)
+            if (s->parent() == f) tolerance += 0.5 * s->scale() * 8;  // a few hops of 12-bit rounding
+        for (uint32_t i = 0; i < rec->slot_count(); ++i) {
+            std::vector<double> dist(N, kInfinity);
+            std::vector<uint8_t> done(N, 0);
+            dist[g->slots()->Get(rec->slot_begin() + i)] = 0;
+            for (;;) {
+                uint32_t u = UINT32_MAX;
+                for (uint32_t n = 0; n < N; ++n)
+                    if (!done[n] && std::isfinite(dist[n]) && (u == UINT32_MAX || dist[n] < dist[u])) u = n;
+                if (u == UINT32_MAX) break;
+                done[u] = 1;
+                for (uint32_t k = g->node_second_begin()->Get(u); k < g->node_second_begin()->Get(u + 1); ++k) {
+                    const auto* m = g->node_second()->Get(k);
+                    const auto* s = sp->Get(m->patch());
+                    if (s->parent() != f) continue;
+                    for (uint32_t j = 0; j < s->node_count(); ++j) {
+                        const uint32_t w = g->slots()->Get(s->slot_begin() + j);
+                        dist[w] = std::min(dist[w], dist[u] + storedDistance(*s, *g->second_distances(), m->slot(), j));
+                    }
+                }
+            }
+            for (uint32_t j = 0; j < rec->slot_count(); ++j) {
+                const uint32_t node = g->slots()->Get(rec->slot_begin() + j);
+                const double stored = storedDistance(*rec, *g->first_distances(), i, j);
+                REQUIRE(std::fabs(stored - dist[node]) <= tolerance);
+                // Never below the straight line between the two vertices.
+                const double straight = distance(mesh.positions[g->node_vertex()->Get(node)],
+                                                 mesh.positions[g->node_vertex()->Get(g->slots()->Get(rec->slot_begin() + i))]);
+                REQUIRE(stored >= straight - 0.5 * rec->scale() - 1e-9);
+                ++checked;
+            }
+        }
+    }
+    CHECK(checked > 1000);
+}
+
+TEST_CASE("bake: pruning merges nodes only when delta allows, and reports it", "[bake]") {
+    const Mesh mesh = planeGrid(60, 60, 1.0);
+    BakeReport none, some;
+    BakeOptions o;
+    o.n1 = 4;
+    const tools::BlobContents c0 = unpack(bakeWith(mesh, o, 2, &none));
+    o.delta = 0.01;
+    const tools::BlobContents c1 = unpack(bakeWith(mesh, o, 2, &some));
+    CHECK(none.firstPrune.prunedNodes == 0);
+    CHECK(none.secondPrune.prunedNodes == 0);
+    CHECK(some.firstPrune.nodes == none.firstPrune.nodes);
+    CHECK(some.firstPrune.prunedNodes > 0);
+    CHECK(some.firstPrune.prunedEdges > 0);
+    CHECK(some.firstPrune.prunedNodes < some.firstPrune.nodes);
+    // Flags in the blob match the second-layer count; first-layer rows shrink.
+    const fb::Graph* g1 = c1.graph();
+    uint64_t flagged = 0;
+    for (uint8_t f : *g1->node_flags()) flagged += f & 1;
+    CHECK(flagged == some.secondPrune.prunedNodes);
+    auto firstRows = [](const fb::Graph* g) {
+        uint64_t rows = 0;
+        for (const auto* rec : *g->first_patches()) rows += rec->slot_count();
+        return rows;
+    };
+    CHECK(firstRows(g1) == g1->node_first()->size());
+    CHECK(firstRows(g1) < firstRows(c0.graph()));
+}
+
+TEST_CASE("bake: the container rejects other versions, bad magic, truncation and corruption", "[bake]") {
+    const std::vector<uint8_t> blob = bakeWith(planeGrid(20, 20, 1.0), BakeOptions(), 2);
+    tools::BlobContents c;
+    std::string error;
+    REQUIRE(tools::unpackBlob(blob, c, error));
+
+    std::vector<uint8_t> v2 = blob;
+    vg_store_le32(v2.data() + 8, 2);
+    CHECK_FALSE(tools::unpackBlob(v2, c, error));
+    CHECK(error.find("format version 2 is not supported") != std::string::npos);
+
+    std::vector<uint8_t> magic = blob;
+    magic[0] = 'X';
+    CHECK_FALSE(tools::unpackBlob(magic, c, error));
+    CHECK(error.find("magic") != std::string::npos);
+
+    for (size_t cut : {size_t(0), size_t(39), size_t(40), blob.size() / 2, blob.size() - 1}) {
+        std::vector<uint8_t> shortBlob(blob.begin(), blob.begin() + long(cut));
+        CHECK_FALSE(tools::unpackBlob(shortBlob, c, error));
+    }
+    for (size_t at : {size_t(40), blob.size() / 3, blob.size() - 1}) {
+        std::vector<uint8_t> flipped = blob;
+        flipped[at] ^= 0x10;
+        CHECK_FALSE(tools::unpackBlob(flipped, c, error));
+        CHECK(error.find("checksum") != std::string::npos);
+    }
+}
+
+TEST_CASE("bake command: writes the blob, the report and a summary", "[bake][cli]") {
+    test::TempDir dir;
+    std::string error;
+    const std::string meshPath = dir.file("torus.ply");
+    REQUIRE(writeMesh(smallBumpy(), meshPath, error));
+    const std::string out = dir.file("torus.vgeo"), report = dir.file("report.json");
+    const test::ToolResult r = test::runTool("bake " + test::quote(meshPath) + " -o " + test::quote(out) +
+                                             " --threads 2 --report " + test::quote(report));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    CHECK(r.out.find("bytes per vertex") != std::string::npos);
+    CHECK(r.err.find("bake: second-layer geodesics") != std::string::npos);  // plain progress lines off a terminal
+    tools::BlobContents c;
+    REQUIRE(tools::readBlobFile(out, c, error));
+    std::ifstream in(report);
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const char* key : {"\"wall_s\"", "\"peak_rss_mb\"", "\"blob_bytes\"", "\"bytes_per_vertex\"", "\"vertices\": 1800",
+                            "\"threads\": 2", "\"stages_s\"", "\"partition\"", "\"second-layer geodesics\"", "\"pruning\""})
+        CHECK(json.find(key) != std::string::npos);
+}
+
+TEST_CASE("bake command: bad parameters and outputs give clear errors and leave no file", "[bake][cli]") {
+    test::TempDir dir;
+    std::string error;
+    const std::string meshPath = dir.file("grid.obj");
+    REQUIRE(writeMesh(planeGrid(10, 10, 1.0), meshPath, error));  // 121 vertices
+    const std::string out = dir.file("out.vgeo");
+    struct Case {
+        std::string args, message;
+        int status;
+    };
+    const Case cases[] = {
+        {"--n1 0", "--n1 must be at least 1", 2},
+        {"--n1 500", "--n1 500 is larger than the 121 vertices", 2},
+        {"--n2 -3", "--n2 must be at least 1", 2},
+        {"--delta -0.1", "--delta must be in [0, 1)", 2},
+        {"--delta abc", "--delta", 2},
+        {"--threads 0x", "--threads", 2},
+        {"--frobnicate", "--frobnicate", 2},
+    };
+    for (const Case& c : cases) {
+        const test::ToolResult r = test::runTool("bake " + test::quote(meshPath) + " -o " + test::quote(out) + " " + c.args);
+        INFO(c.args << " -> " << r.err);
+        CHECK(r.status == c.status);
+        CHECK(r.err.find(c.message) != std::string::npos);
+        CHECK_FALSE(std::filesystem::exists(out));
+    }
+    // Unwritable output: a missing directory.
+    const test::ToolResult r1 = test::runTool("bake " + test::quote(meshPath) + " -o " + test::quote(dir.file("no/such/dir/x.vgeo")));
+    CHECK(r1.status == 1);
+    CHECK(r1.err.find("cannot write") != std::string::npos);
+    // A mesh the loader refuses: its error, and no output.
+    const std::string broken = dir.write("broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n");
+    const test::ToolResult r2 = test::runTool("bake " + test::quote(broken) + " -o " + test::quote(out));
+    CHECK(r2.status == 1);
+    CHECK(r2.err.find("out of range") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(out));
+    // No temporary files left behind in the output directory.
+    for (const auto& e : std::filesystem::directory_iterator(dir.file("")))
+        CHECK(e.path().filename().string().find(".tmp-") == std::string::npos);
+}
+
+TEST_CASE("bake: every shared mesh bakes with defaults", "[bake][shared]") {
+    const std::string dir = test::sharedMeshDir();
+    if (dir.empty()) {
+        WARN("skipped: ../shared/meshes is absent");
+        return;
+    }
+    for (const char* name : {"spot", "fandisk", "rocker-arm", "stanford-bunny", "armadillo-50k", "nefertiti-50k", "igea"}) {
+        Mesh mesh;
+        const LoadReport load = loadMesh(dir + "/" + name + ".ply", LoadOptions(), mesh);
+        INFO(name << ": " << load.error);
+        REQUIRE(load.ok);
+        BakeReport report;
+        const tools::BlobContents c = unpack(bakeWith(mesh, BakeOptions(), 2, &report));
+        CHECK(c.graph()->vertex_count() == mesh.vertexCount());
+        CHECK(report.secondPatches > report.firstPatches);
+    }
+}

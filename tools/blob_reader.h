@@ -1,0 +1,26 @@
+// Reading a .vgeo blob on the tool side: container checks (magic, format version, flags,
+// sizes, checksum), zstd decompression and the flatbuffers verifier. The engine-side
+// reader is the runtime's; this one serves the tools and the tests.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "vorogeo_generated.h"
+
+namespace vorogeo::tools {
+
+struct BlobContents {
+    uint32_t formatVersion = 0;
+    bool compressed = false;
+    std::vector<uint8_t> flatbuffer;  // verified
+    const fb::Graph* graph() const { return fb::GetGraph(flatbuffer.data()); }
+};
+
+// False with a one-line reason ("not a vorogeo blob (bad magic)", "format version 2 is
+// not supported (this build reads version 1)", "checksum mismatch", ...).
+bool unpackBlob(const std::vector<uint8_t>& bytes, BlobContents& out, std::string& error);
+bool readBlobFile(const std::string& path, BlobContents& out, std::string& error);
+
+}  // namespace vorogeo::tools

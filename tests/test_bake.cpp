@@ -284,6 +284,18 @@ TEST_CASE("bake command: writes the blob, the report and a summary", "[bake][cli
     CHECK(r.err.find("bake: second-layer geodesics") != std::string::npos);  // plain progress lines off a terminal
     tools::BlobContents c;
     REQUIRE(tools::readBlobFile(out, c, error));
+    // `vorogeo info` describes the blob; a truncated copy is rejected with the reason.
+    const test::ToolResult info = test::runTool("info " + test::quote(out) + " --json");
+    CHECK(info.status == 0);
+    CHECK(info.out.find("\"vertices\":1800") != std::string::npos);
+    {
+        std::ifstream whole(out, std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(whole)), std::istreambuf_iterator<char>());
+        dir.write("cut.vgeo", bytes.substr(0, bytes.size() / 2));
+    }
+    const test::ToolResult cut = test::runTool("info " + test::quote(dir.file("cut.vgeo")));
+    CHECK(cut.status == 1);
+    CHECK(cut.err.find("truncated") != std::string::npos);
     std::ifstream in(report);
     const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     for (const char* key : {"\"wall_s\"", "\"peak_rss_mb\"", "\"blob_bytes\"", "\"bytes_per_vertex\"", "\"vertices\": 1800",

@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "blob_info.h"
 #include "cli.h"
 #include "mesh_io.h"
 #include "mesh_report.h"
@@ -13,8 +14,10 @@ int runInfo(int argc, char** argv) {
     const cli::Args args(argc, argv, {}, {"--json", "--repair", "--help"});
     if (args.flag("--help")) {
         std::printf(
-            "usage: vorogeo info MESH [--json] [--repair]\n\n"
+            "usage: vorogeo info MESH [--json] [--repair]\n"
+            "       vorogeo info BLOB.vgeo [--json]\n\n"
             "Loads MESH (.obj, .ply, .off, .stl), validates it and prints its statistics.\n"
+            "For a baked blob: verifies it and prints its sizes and bake parameters.\n"
             "  --json     one JSON object on stdout instead of text\n"
             "  --repair   drop degenerate/duplicate faces, re-orient, split non-manifold parts\n"
             "Exit status: 0 ok, 1 the mesh cannot be loaded or is invalid, 2 bad arguments.\n");
@@ -22,6 +25,7 @@ int runInfo(int argc, char** argv) {
     }
     if (args.positional().size() != 1) throw cli::UsageError("expected exactly one mesh file (usage: vorogeo info MESH [--json] [--repair])");
     const std::string& path = args.positional()[0];
+    if (looksLikeBlob(path)) return printBlobInfo(path, args.flag("--json"));
 
     LoadOptions options;
     options.repair = args.flag("--repair");

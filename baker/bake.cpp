@@ -69,8 +69,6 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
     po.secondLayerSeeds = options.n2;
     po.seed = options.seed;
     const Partition partition = partitionMesh(mesh, po, progress);
-    report.n1 = partition.stats.firstSeeds;
-    report.n2 = options.n2;
     report.firstPatches = partition.first.size();
     report.secondPatches = partition.second.size();
     for (const Patch& p : partition.first) {

@@ -33,7 +33,6 @@ struct BakeStage {
 
 struct BakeReport {
     uint32_t vertices = 0, faces = 0;
-    uint32_t n1 = 0, n2 = 0;  // effective automatic or requested values
     double delta = 0, deltaAbsolute = 0, deltaSecond = 0;
     double bboxDiagonal = 0;
     std::vector<BakeStage> stages;

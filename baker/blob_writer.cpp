@@ -208,8 +208,20 @@ std::vector<uint8_t> packContainer(const std::vector<uint8_t>& flatbuffer, bool 
     return out;
 }
 
+namespace {
+std::string temporaryPath(const std::string& path) { return path + ".tmp-" + std::to_string(::getpid()); }
+}  // namespace
+
+void checkWritable(const std::string& path) {
+    const std::string tmp = temporaryPath(path);
+    FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+    std::fclose(f);
+    std::remove(tmp.c_str());
+}
+
 void writeFileAtomically(const std::string& path, const std::vector<uint8_t>& bytes) {
-    const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+    const std::string tmp = temporaryPath(path);
     FILE* f = std::fopen(tmp.c_str(), "wb");
     if (!f) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
     const bool written = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();

@@ -31,6 +31,10 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
 // Header + payload (the flatbuffer, zstd-compressed or not).
 std::vector<uint8_t> packContainer(const std::vector<uint8_t>& flatbuffer, bool compress, int level);
 
+// Throws std::runtime_error ("cannot write PATH: reason") if `path` cannot be created, by
+// creating and removing its temporary file: a bake checks this before its long work.
+void checkWritable(const std::string& path);
+
 // Writes to "<path>.tmp-<pid>" then renames it over `path`; on any failure the temporary
 // file is removed and std::runtime_error names the path and the reason.
 void writeFileAtomically(const std::string& path, const std::vector<uint8_t>& bytes);

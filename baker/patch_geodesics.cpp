@@ -110,15 +110,22 @@ struct LocalGraph {
     std::vector<double> weight;
 };
 
-void localDijkstra(const LocalGraph& g, uint32_t source, const std::vector<uint32_t>& targets, std::vector<double>& dist,
-                   std::vector<std::pair<double, uint32_t>>& heap, std::vector<uint8_t>& settled) {
+struct DijkstraScratch {
+    std::vector<double> dist;
+    std::vector<std::pair<double, uint32_t>> heap;
+    std::vector<uint8_t> settled, isTarget;
+};
+
+void localDijkstra(const LocalGraph& g, uint32_t source, const std::vector<uint32_t>& targets, DijkstraScratch& s) {
     const size_t n = g.offsets.size() - 1;
+    std::vector<double>& dist = s.dist;
+    std::vector<std::pair<double, uint32_t>>& heap = s.heap;
+    std::vector<uint8_t>& settled = s.settled;
     dist.assign(n, kInfinity);
     settled.assign(n, 0);
+    s.isTarget.assign(n, 0);
     size_t remaining = targets.size();
-    std::vector<uint8_t> isTarget;  // small: only this patch's nodes
-    isTarget.assign(n, 0);
-    for (uint32_t t : targets) isTarget[t] = 1;
+    for (uint32_t t : targets) s.isTarget[t] = 1;
     heap.clear();
     dist[source] = 0;
     heap.push_back({0.0, source});
@@ -129,7 +136,7 @@ void localDijkstra(const LocalGraph& g, uint32_t source, const std::vector<uint3
         heap.pop_back();
         if (settled[u]) continue;
         settled[u] = 1;
-        if (isTarget[u]) --remaining;
+        if (s.isTarget[u]) --remaining;
         for (uint32_t k = g.offsets[u]; k < g.offsets[u + 1]; ++k) {
             const uint32_t v = g.adj[k];
             const double nd = d + g.weight[k];
@@ -185,14 +192,12 @@ void composeFirstLayer(const Mesh& mesh, const Partition& partition, const std::
         }
         std::vector<uint32_t> rowLocal(m.rows);
         for (uint32_t i = 0; i < m.rows; ++i) rowLocal[i] = local(m.vertices[i]);
-        std::vector<double> dist;
-        std::vector<std::pair<double, uint32_t>> heap;
-        std::vector<uint8_t> settled;
+        DijkstraScratch scratch;
         std::vector<uint32_t> targets;
         for (uint32_t i = 0; i + 1 < m.rows; ++i) {
             targets.assign(rowLocal.begin() + i + 1, rowLocal.end());
-            localDijkstra(g, rowLocal[i], targets, dist, heap, settled);
-            for (uint32_t j = i + 1; j < m.rows; ++j) m.upper[upperIndex(m.rows, i, j)] = dist[rowLocal[j]];
+            localDijkstra(g, rowLocal[i], targets, scratch);
+            for (uint32_t j = i + 1; j < m.rows; ++j) m.upper[upperIndex(m.rows, i, j)] = scratch.dist[rowLocal[j]];
         }
     });
 }

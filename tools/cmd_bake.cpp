@@ -1,7 +1,5 @@
 // vorogeo bake: mesh -> .vgeo blob (partition, patch geodesics, overlay, pruning, blob).
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
@@ -47,7 +45,6 @@ public:
         if (newStage && tty_ && !stage_.empty()) std::fprintf(stderr, "\n");
         if (newStage) {
             stage_ = stage;
-            stageClock_ = Stopwatch();
             if (!tty_) std::fprintf(stderr, "bake: %s ...\n", stage);
         }
         if (tty_) {
@@ -64,7 +61,6 @@ public:
 private:
     bool quiet_, tty_;
     std::string stage_;
-    Stopwatch stageClock_;
 };
 
 uint32_t positiveCount(const cli::Args& args, const char* name) {
@@ -175,16 +171,7 @@ int runBake(int argc, char** argv) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
 
     Stopwatch wall;
-    {  // fail before the bake, not after it, if the output cannot be written
-        const std::string probe = outPath + ".tmp-" + std::to_string(::getpid());
-        FILE* f = std::fopen(probe.c_str(), "wb");
-        if (!f) {
-            std::fprintf(stderr, "vorogeo bake: cannot write %s: %s\n", outPath.c_str(), std::strerror(errno));
-            return 1;
-        }
-        std::fclose(f);
-        std::remove(probe.c_str());
-    }
+    checkWritable(outPath);  // fail before the bake, not after it
     Mesh mesh;
     if (!loadMeshForCommand("bake", args.positional()[0], args.flag("--repair"), mesh)) return 1;
     BakeReport report;

@@ -15,6 +15,7 @@ int runDemo(int argc, char** argv);
 int runExact(int argc, char** argv);
 int runBenchExact(int argc, char** argv);
 int runBake(int argc, char** argv);
+int runEval(int argc, char** argv);
 }  // namespace vorogeo::tools
 
 namespace {
@@ -26,6 +27,7 @@ const Command kCommands[] = {
     {"demo", "run the pipeline on a built-in mesh", vorogeo::tools::runDemo},
     {"exact", "exact geodesic distances (MMP); check against golden pairs", vorogeo::tools::runExact},
     {"bake", "precompute a mesh's patch graph into a .vgeo blob", vorogeo::tools::runBake},
+    {"eval", "accuracy and query time of a baked blob against exact distances", vorogeo::tools::runEval},
     {"bench-exact", "benchmark the exact engine against edge Dijkstra", vorogeo::tools::runBenchExact},
     {nullptr, nullptr, nullptr},  // sentinel, keeps the array non-empty
 };

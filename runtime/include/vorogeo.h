@@ -1,9 +1,45 @@
 /* vorogeo runtime: fast approximate geodesic distances on a baked triangle mesh.
  *
- * C99 API. Every function is thread-safe unless documented otherwise; the
- * library never allocates memory and never throws. */
+ * C99 API over a .vgeo blob written by `vorogeo bake`. The library never allocates memory
+ * (the caller supplies every byte it uses, or an allocator callback on the convenience
+ * path vg_open_file), never throws, and has no global state.
+ *
+ * Typical use:
+ *
+ *     size_t need;
+ *     vg_open_size(blob, blob_size, &need);             // bytes the graph handle needs
+ *     void* mem = my_alloc(need);
+ *     const vg_graph* g;
+ *     if (vg_open(blob, blob_size, mem, need, &g) != VG_OK) ...;
+ *     void* wmem = my_alloc(vg_workspace_size(g));      // one workspace per thread
+ *     vg_workspace* ws;
+ *     vg_workspace_init(g, wmem, vg_workspace_size(g), &ws);
+ *     float d;
+ *     vg_distance(g, ws, source, target, &d);
+ *
+ * Ownership and lifetimes. A vg_graph lives inside the memory given to vg_open and points
+ * into it; for an uncompressed blob it also points into the blob itself (zero copy), so
+ * both must outlive the graph. Nothing needs closing: freeing that memory ends the graph.
+ * A vg_workspace lives inside its memory and belongs to the graph it was made for.
+ *
+ * Thread safety. A graph is immutable after vg_open: any number of threads may query one
+ * graph at once, each with its own workspace. A workspace is used by one query at a time.
+ *
+ * Distances are in mesh units. Two vertices with no path between them (different
+ * connected components, or a vertex used by no triangle) are at distance +infinity
+ * (the float INFINITY), in every query. Vertex ids are the mesh's input vertex indices. */
 #ifndef VOROGEO_H
 #define VOROGEO_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* Exported symbols of the shared library (everything else stays hidden). */
+#if defined(__GNUC__) || defined(__clang__)
+#define VG_API __attribute__((visibility("default")))
+#else
+#define VG_API
+#endif
 
 #ifdef __cplusplus
 extern "C" {
@@ -12,16 +48,102 @@ extern "C" {
 /* Status codes returned by every fallible call. 0 is success. */
 typedef enum vg_status {
     VG_OK = 0,
-    VG_ERR_INVALID_ARGUMENT = 1
+    VG_ERR_INVALID_ARGUMENT = 1,    /* NULL pointer, zero size or a value out of its range */
+    VG_ERR_BUFFER_TOO_SMALL = 2,    /* caller memory smaller than the size query said */
+    VG_ERR_TRUNCATED = 3,           /* the blob is shorter than its header says */
+    VG_ERR_BAD_MAGIC = 4,           /* not a .vgeo blob */
+    VG_ERR_UNSUPPORTED_VERSION = 5, /* a format version this library does not read */
+    VG_ERR_UNSUPPORTED_FLAGS = 6,   /* unknown flags, or compressed while built without zstd */
+    VG_ERR_CHECKSUM = 7,            /* payload bytes do not match the header's checksum */
+    VG_ERR_DECOMPRESSION = 8,       /* the zstd frame is corrupt or of the wrong size */
+    VG_ERR_CORRUPT_STRUCTURE = 9,   /* the flatbuffer fails verification */
+    VG_ERR_CORRUPT_CONTENT = 10,    /* an index out of range or inconsistent counts */
+    VG_ERR_INVALID_VERTEX = 11,     /* a vertex id >= vg_vertex_count() */
+    VG_ERR_WRONG_WORKSPACE = 12,    /* the workspace was made for another graph */
+    VG_ERR_IO = 13,                 /* vg_open_file could not open, read or map the file */
+    VG_ERR_OUT_OF_MEMORY = 14       /* the allocator callback returned NULL */
 } vg_status;
 
 /* Human-readable, static, never NULL. Unknown codes give "unknown status". */
-const char* vg_status_string(vg_status status);
+VG_API const char* vg_status_string(vg_status status);
 
 /* Library version, for example "0.1.0"; static storage. */
-const char* vg_version_string(void);
+VG_API const char* vg_version_string(void);
 /* Library version as (major << 16) | (minor << 8) | patch. */
-unsigned vg_version_number(void);
+VG_API unsigned vg_version_number(void);
+/* 1 when this build opens zstd-compressed blobs, 0 when built without zstd. */
+VG_API int vg_supports_compression(void);
+
+/* ------------------------------------------------------------------ opening */
+
+typedef struct vg_graph vg_graph;
+
+/* Bytes of caller memory vg_open needs for this blob: the handle, plus for a compressed
+ * blob the decompressed graph and the decompression context. Reads only the 40-byte
+ * header; errors as vg_open for a bad header. */
+VG_API vg_status vg_open_size(const void* blob, size_t blob_size, size_t* out_memory_size);
+
+/* Checks the blob (header, checksum, decompression, flatbuffers verifier, every index
+ * and count) and builds a graph handle inside `memory` (any alignment, at least
+ * vg_open_size bytes). On error *out_graph is NULL and nothing refers to the memory. */
+VG_API vg_status vg_open(const void* blob, size_t blob_size, void* memory, size_t memory_size,
+                  const vg_graph** out_graph);
+
+/* Allocator for the convenience path: alloc returns size bytes (NULL on failure), free
+ * releases them. `user` is passed through. */
+typedef struct vg_allocator {
+    void* (*alloc)(void* user, size_t size);
+    void (*free)(void* user, void* memory);
+    void* user;
+} vg_allocator;
+
+/* Opens a .vgeo file: an uncompressed blob is mapped read-only (zero copy, where the
+ * platform has mmap), a compressed one is read and decompressed into memory from
+ * `allocator` (required). Release with vg_close_file. */
+VG_API vg_status vg_open_file(const char* path, const vg_allocator* allocator, const vg_graph** out_graph);
+/* Releases a graph from vg_open_file (mapping and memory). NULL is ignored. */
+VG_API void vg_close_file(const vg_graph* graph);
+
+/* Facts about an open graph. */
+VG_API uint32_t vg_vertex_count(const vg_graph* graph);
+VG_API uint32_t vg_node_count(const vg_graph* graph);
+/* Length of the diagonal of the mesh's bounding box, the natural unit of error. */
+VG_API float vg_bbox_diagonal(const vg_graph* graph);
+
+/* ------------------------------------------------------------------ workspaces */
+
+typedef struct vg_workspace vg_workspace;
+
+/* Bytes of one workspace for this graph (per-thread scratch of every query). */
+VG_API size_t vg_workspace_size(const vg_graph* graph);
+/* Builds a workspace inside `memory` (any alignment, at least vg_workspace_size bytes). */
+VG_API vg_status vg_workspace_init(const vg_graph* graph, void* memory, size_t memory_size,
+                            vg_workspace** out_workspace);
+
+/* ------------------------------------------------------------------ queries */
+
+/* Geodesic distance between two vertices: the hierarchical bidirectional A* of the
+ * thesis (3.7.1); two vertices of one second-layer patch are answered by a lookup,
+ * refined only when a path through the graph is shorter. */
+VG_API vg_status vg_distance(const vg_graph* graph, vg_workspace* workspace, uint32_t source,
+                      uint32_t target, float* out_distance);
+
+/* As vg_distance, but gives up as soon as the distance must exceed max_distance:
+ * *out_distance is the distance when it is at most max_distance, else +infinity. */
+VG_API vg_status vg_distance_within(const vg_graph* graph, vg_workspace* workspace, uint32_t source,
+                             uint32_t target, float max_distance, float* out_distance);
+
+/* Distance from the nearest of `source_count` sources to every vertex (thesis 3.7.2):
+ * out_distances has vg_vertex_count() floats. */
+VG_API vg_status vg_distance_field(const vg_graph* graph, vg_workspace* workspace,
+                            const uint32_t* sources, size_t source_count, float* out_distances);
+
+/* Which of `target_count` targets is geodesically nearest to `source`: its index in
+ * `targets` (the first such index when a vertex is listed twice) and its distance.
+ * When no target is reachable: index = target_count and distance = +infinity. */
+VG_API vg_status vg_nearest(const vg_graph* graph, vg_workspace* workspace, uint32_t source,
+                     const uint32_t* targets, size_t target_count, size_t* out_index,
+                     float* out_distance);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,121 @@
+// The opened graph: raw views into the verified flatbuffer, and the few inline helpers
+// every query uses (12-bit entry decoding, patch membership of a vertex, components).
+// Internal to the runtime.
+#pragma once
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vorogeo.h"
+
+namespace vg {
+
+constexpr uint32_t kNone = 0xFFFFFFFFu;
+constexpr uint32_t kNoPathQuantum = 4095;
+constexpr uint8_t kNodeMergedAway = 1;  // node_flags bit 0
+
+// Mirrors vorogeo.fb.PatchRecord / Membership (little-endian flatbuffer structs; the
+// layout is checked against the generated code in vg_open.cpp).
+struct Patch {
+    uint32_t slotBegin;
+    uint32_t slotCount;
+    uint32_t nodeCount;
+    uint32_t padding;
+    uint64_t matrixBegin;
+    float scale;
+    uint32_t parent;
+};
+struct Membership {
+    uint32_t patch;
+    uint32_t slot;
+};
+
+}  // namespace vg
+
+struct vg_graph {
+    uint32_t vertexCount, nodeCount, secondCount, firstCount;
+    float bboxDiagonal;
+    const float* positions;          // 3 per vertex
+    const uint32_t* vertexPatch;     // home second-layer patch, kNone when unused
+    const uint16_t* vertexSlot;
+    const uint32_t* nodeVertex;
+    const uint8_t* nodeFlags;
+    const uint32_t* nodeSecondBegin;
+    const vg::Membership* nodeSecond;
+    const uint32_t* nodeFirstBegin;
+    const vg::Membership* nodeFirst;
+    const vg::Patch* second;
+    const vg::Patch* first;
+    const uint32_t* slots;
+    const uint8_t* secondDistances;
+    const uint8_t* firstDistances;
+
+    // Set by vg_open_file only: what vg_close_file releases.
+    vg_allocator fileAllocator;
+    void* fileMemory;
+    void* fileMapping;
+    size_t fileMappingSize;
+};
+
+namespace vg {
+
+// Entry k of a packed 12-bit array, in quanta.
+inline uint32_t quantum(const uint8_t* packed, uint64_t k) {
+    const uint8_t* p = packed + 3 * (k >> 1);
+    return (k & 1) ? (uint32_t(p[1]) >> 4) | (uint32_t(p[2]) << 4) : uint32_t(p[0]) | ((uint32_t(p[1]) & 0xFu) << 8);
+}
+
+// First entry of row i (its entry for column i + 1) in an upper-triangle matrix of n rows.
+inline uint64_t rowStart(const Patch& p, uint32_t i) {
+    return p.matrixBegin + uint64_t(i) * (2 * uint64_t(p.slotCount) - i - 1) / 2;
+}
+
+// Distance between slots i and j of a patch (0 on the diagonal, +inf for "no path").
+inline float entry(const Patch& p, const uint8_t* packed, uint32_t i, uint32_t j) {
+    if (i == j) return 0.0f;
+    if (i > j) {
+        const uint32_t t = i;
+        i = j;
+        j = t;
+    }
+    const uint32_t q = quantum(packed, rowStart(p, i) + (j - i - 1));
+    return q == kNoPathQuantum ? __builtin_inff() : float(q) * p.scale;
+}
+
+inline bool nodeActive(const vg_graph& g, uint32_t node) { return (g.nodeFlags[node] & kNodeMergedAway) == 0; }
+
+// The node id of a vertex, or kNone when it is interior to its patch (or unused).
+inline uint32_t vertexNode(const vg_graph& g, uint32_t v) {
+    const uint32_t patch = g.vertexPatch[v];
+    if (patch == kNone) return kNone;
+    const Patch& p = g.second[patch];
+    const uint32_t slot = g.vertexSlot[v];
+    return slot < p.nodeCount ? g.slots[p.slotBegin + slot] : kNone;
+}
+
+// The connected component of a used vertex (the parent of its first-layer patch).
+inline uint32_t vertexComponent(const vg_graph& g, uint32_t v) {
+    return g.first[g.second[g.vertexPatch[v]].parent].parent;
+}
+
+// Calls f(patch, slot) for every second-layer patch holding vertex v (used vertices only):
+// all memberships of a node, the home patch of any other vertex.
+template <class F>
+inline void forEachPatchOf(const vg_graph& g, uint32_t v, F&& f) {
+    const uint32_t node = vertexNode(g, v);
+    if (node == kNone) {
+        f(g.vertexPatch[v], uint32_t(g.vertexSlot[v]));
+        return;
+    }
+    for (uint32_t m = g.nodeSecondBegin[node]; m < g.nodeSecondBegin[node + 1]; ++m)
+        f(g.nodeSecond[m].patch, g.nodeSecond[m].slot);
+}
+
+inline float euclidean(const vg_graph& g, uint32_t a, uint32_t b) {
+    const float* pa = g.positions + 3 * uint64_t(a);
+    const float* pb = g.positions + 3 * uint64_t(b);
+    const float dx = pa[0] - pb[0], dy = pa[1] - pb[1], dz = pa[2] - pb[2];
+    return __builtin_sqrtf(dx * dx + dy * dy + dz * dz);
+}
+
+}  // namespace vg

@@ -1,0 +1,137 @@
+// vg_open_size / vg_open: container header, checksum, decompression into caller memory
+// (static zstd context), flatbuffers verification, then the meaning checks of
+// vg_validate.cpp. Nothing is allocated; on failure nothing refers to the memory.
+#include <string.h>
+
+#include "vg_graph.h"
+#include "vg_validate.h"
+#include "vorogeo_container.h"
+
+#if VG_WITH_ZSTD
+#define ZSTD_STATIC_LINKING_ONLY
+#include <zstd.h>
+#endif
+
+namespace {
+
+// Everything vg_open needs to know from the 40-byte header.
+struct Header {
+    bool compressed;
+    uint64_t payloadSize;
+    uint64_t flatbufferSize;
+    uint64_t checksum;
+};
+
+constexpr size_t kAlign = 16;
+// flatbuffers offsets are 32-bit: a larger buffer cannot be a valid flatbuffer.
+constexpr uint64_t kMaxFlatbuffer = 0x7FFFFFFFull;
+
+size_t alignUp(size_t n) { return (n + kAlign - 1) & ~(kAlign - 1); }
+
+vg_status readHeader(const void* blob, size_t blobSize, Header& h) {
+    if (blob == nullptr) return VG_ERR_INVALID_ARGUMENT;
+    if (blobSize < VG_CONTAINER_HEADER_SIZE) return VG_ERR_TRUNCATED;
+    const unsigned char* p = static_cast<const unsigned char*>(blob);
+    if (memcmp(p, VG_CONTAINER_MAGIC, 8) != 0) return VG_ERR_BAD_MAGIC;
+    if (vg_load_le32(p + 8) != VG_FORMAT_VERSION) return VG_ERR_UNSUPPORTED_VERSION;
+    const uint32_t flags = vg_load_le32(p + 12);
+    if ((flags & ~VG_FLAG_ZSTD) != 0) return VG_ERR_UNSUPPORTED_FLAGS;
+    h.compressed = (flags & VG_FLAG_ZSTD) != 0;
+#if !VG_WITH_ZSTD
+    if (h.compressed) return VG_ERR_UNSUPPORTED_FLAGS;
+#endif
+    h.payloadSize = vg_load_le64(p + 16);
+    h.flatbufferSize = vg_load_le64(p + 24);
+    h.checksum = vg_load_le64(p + 32);
+    const uint64_t present = blobSize - VG_CONTAINER_HEADER_SIZE;
+    if (h.payloadSize > present) return VG_ERR_TRUNCATED;
+    if (h.payloadSize < present) return VG_ERR_CORRUPT_STRUCTURE;  // trailing bytes
+    if (h.flatbufferSize == 0 || h.flatbufferSize > kMaxFlatbuffer) return VG_ERR_CORRUPT_STRUCTURE;
+    if (!h.compressed && h.flatbufferSize != h.payloadSize) return VG_ERR_CORRUPT_STRUCTURE;
+    return VG_OK;
+}
+
+size_t decompressionContextSize() {
+#if VG_WITH_ZSTD
+    return ZSTD_estimateDCtxSize();
+#else
+    return 0;
+#endif
+}
+
+// An uncompressed flatbuffer is used in place when 8-byte aligned; otherwise it is copied.
+bool usableInPlace(const void* blob) {
+    return ((reinterpret_cast<uintptr_t>(blob) + VG_CONTAINER_HEADER_SIZE) & 7u) == 0;
+}
+
+// Layout of the caller memory: [graph][flatbuffer copy][zstd context], each aligned.
+size_t memoryNeeded(const void* blob, const Header& h) {
+    size_t n = kAlign - 1 + alignUp(sizeof(vg_graph));
+    if (h.compressed) n += alignUp(size_t(h.flatbufferSize)) + alignUp(decompressionContextSize());
+    else if (!usableInPlace(blob)) n += alignUp(size_t(h.flatbufferSize));
+    return n;
+}
+
+}  // namespace
+
+extern "C" vg_status vg_open_size(const void* blob, size_t blob_size, size_t* out_memory_size) {
+    if (out_memory_size == nullptr) return VG_ERR_INVALID_ARGUMENT;
+    *out_memory_size = 0;
+    Header h;
+    const vg_status st = readHeader(blob, blob_size, h);
+    if (st != VG_OK) return st;
+    *out_memory_size = memoryNeeded(blob, h);
+    return VG_OK;
+}
+
+extern "C" vg_status vg_open(const void* blob, size_t blob_size, void* memory, size_t memory_size,
+                             const vg_graph** out_graph) {
+    if (out_graph == nullptr) return VG_ERR_INVALID_ARGUMENT;
+    *out_graph = nullptr;
+    if (memory == nullptr) return VG_ERR_INVALID_ARGUMENT;
+    Header h;
+    vg_status st = readHeader(blob, blob_size, h);
+    if (st != VG_OK) return st;
+    if (memory_size < memoryNeeded(blob, h)) return VG_ERR_BUFFER_TOO_SMALL;
+
+    const unsigned char* payload = static_cast<const unsigned char*>(blob) + VG_CONTAINER_HEADER_SIZE;
+    if (vg_checksum64(payload, size_t(h.payloadSize)) != h.checksum) return VG_ERR_CHECKSUM;
+
+    unsigned char* cursor = reinterpret_cast<unsigned char*>(
+        (reinterpret_cast<uintptr_t>(memory) + kAlign - 1) & ~uintptr_t(kAlign - 1));
+    vg_graph* graph = reinterpret_cast<vg_graph*>(cursor);
+    cursor += alignUp(sizeof(vg_graph));
+
+    const unsigned char* flatbuffer = payload;
+    if (h.compressed) {
+#if VG_WITH_ZSTD
+        unsigned char* target = cursor;
+        cursor += alignUp(size_t(h.flatbufferSize));
+        ZSTD_DCtx* dctx = ZSTD_initStaticDCtx(cursor, decompressionContextSize());
+        if (dctx == nullptr) return VG_ERR_DECOMPRESSION;
+        if (ZSTD_getFrameContentSize(payload, size_t(h.payloadSize)) != h.flatbufferSize)
+            return VG_ERR_DECOMPRESSION;
+        const size_t got = ZSTD_decompressDCtx(dctx, target, size_t(h.flatbufferSize), payload, size_t(h.payloadSize));
+        if (ZSTD_isError(got) || got != h.flatbufferSize) return VG_ERR_DECOMPRESSION;
+        flatbuffer = target;
+#endif
+    } else if (!usableInPlace(blob)) {
+        memcpy(cursor, payload, size_t(h.flatbufferSize));
+        flatbuffer = cursor;
+    }
+
+    st = vg::verifyAndBind(flatbuffer, size_t(h.flatbufferSize), *graph);
+    if (st != VG_OK) return st;
+    graph->fileAllocator = vg_allocator{nullptr, nullptr, nullptr};
+    graph->fileMemory = nullptr;
+    graph->fileMapping = nullptr;
+    graph->fileMappingSize = 0;
+    *out_graph = graph;
+    return VG_OK;
+}
+
+extern "C" int vg_supports_compression(void) { return VG_WITH_ZSTD ? 1 : 0; }
+
+extern "C" uint32_t vg_vertex_count(const vg_graph* graph) { return graph ? graph->vertexCount : 0; }
+extern "C" uint32_t vg_node_count(const vg_graph* graph) { return graph ? graph->nodeCount : 0; }
+extern "C" float vg_bbox_diagonal(const vg_graph* graph) { return graph ? graph->bboxDiagonal : 0.0f; }

@@ -1,0 +1,161 @@
+// The blob is untrusted input: after the flatbuffers verifier has checked that every
+// vector lies inside the buffer, this checks what the queries assume, so that no query
+// can read out of bounds whatever the bytes: every index in range, every count
+// consistent, every back reference (vertex -> slot -> vertex, node -> membership -> node)
+// pointing home, positions and scales finite. One pass over each array.
+#include "vg_validate.h"
+
+#include "vorogeo_generated.h"
+
+namespace vg {
+namespace {
+
+static_assert(sizeof(Patch) == sizeof(vorogeo::fb::PatchRecord), "PatchRecord layout");
+static_assert(alignof(Patch) == alignof(vorogeo::fb::PatchRecord), "PatchRecord alignment");
+static_assert(sizeof(Membership) == sizeof(vorogeo::fb::Membership), "Membership layout");
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#error "the runtime reads flatbuffer vectors in place and needs a little-endian target"
+#endif
+
+template <class T>
+const T* raw(const flatbuffers::Vector<T>* v) {
+    return v ? v->data() : nullptr;
+}
+template <class S, class T>
+const S* rawStructs(const flatbuffers::Vector<const T*>* v) {
+    return v ? reinterpret_cast<const S*>(v->data()) : nullptr;
+}
+template <class V>
+uint64_t count(const V* v) {
+    return v ? v->size() : 0;
+}
+
+bool finite(float x) { return x == x && x - x == 0.0f; }
+
+// Entries a packed 12-bit array of `bytes` bytes holds (entry k ends at byte 3(k/2)+1+k%2).
+uint64_t packedCapacity(uint64_t bytes) { return (bytes / 3) * 2 + (bytes % 3 == 2 ? 1 : 0); }
+
+bool patchesValid(const Patch* patches, uint64_t patchCount, uint64_t slotCount, uint64_t entryCapacity,
+                  uint64_t parentLimit, bool nodesOnly) {
+    for (uint64_t i = 0; i < patchCount; ++i) {
+        const Patch& p = patches[i];
+        if (uint64_t(p.slotBegin) + p.slotCount > slotCount) return false;
+        if (p.slotCount == 0 || p.nodeCount > p.slotCount || p.slotCount > 65536u) return false;
+        if (nodesOnly && p.nodeCount != p.slotCount) return false;
+        const uint64_t n = p.slotCount, entries = n * (n - 1) / 2;
+        if (p.matrixBegin > entryCapacity || entries > entryCapacity - p.matrixBegin) return false;
+        if (!finite(p.scale) || p.scale < 0.0f) return false;
+        if (parentLimit != 0 && p.parent >= parentLimit) return false;
+    }
+    return true;
+}
+
+bool slotsValid(const Patch* patches, uint64_t patchCount, const uint32_t* slots, uint64_t nodes,
+                uint64_t vertices) {
+    for (uint64_t i = 0; i < patchCount; ++i) {
+        const Patch& p = patches[i];
+        for (uint32_t s = 0; s < p.slotCount; ++s) {
+            const uint32_t id = slots[p.slotBegin + s];
+            if (s < p.nodeCount ? id >= nodes : id >= vertices) return false;
+        }
+    }
+    return true;
+}
+
+bool membershipsValid(const uint32_t* begin, const Membership* list, uint64_t listSize, uint64_t nodes,
+                      const Patch* patches, uint64_t patchCount, const uint32_t* slots) {
+    if (begin[0] != 0 || begin[nodes] != listSize) return false;
+    for (uint64_t n = 0; n < nodes; ++n) {
+        if (begin[n] > begin[n + 1]) return false;
+        for (uint32_t m = begin[n]; m < begin[n + 1]; ++m) {
+            if (list[m].patch >= patchCount) return false;
+            const Patch& p = patches[list[m].patch];
+            if (list[m].slot >= p.nodeCount || slots[p.slotBegin + list[m].slot] != n) return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& graph) {
+    flatbuffers::Verifier verifier(flatbuffer, size);
+    if (!vorogeo::fb::VerifyGraphBuffer(verifier)) return VG_ERR_CORRUPT_STRUCTURE;
+    const vorogeo::fb::Graph* g = vorogeo::fb::GetGraph(flatbuffer);
+
+    const uint64_t V = g->vertex_count();
+    const uint64_t N = count(g->node_vertex());
+    const uint64_t S2 = count(g->second_patches()), S1 = count(g->first_patches());
+    const uint64_t slotCount = count(g->slots());
+    if (V == 0 || V >= kNone || N >= kNone || S2 >= kNone || S1 >= kNone || S1 == 0 || S2 == 0)
+        return VG_ERR_CORRUPT_CONTENT;
+    if (count(g->positions()) != 3 * V || count(g->vertex_patch()) != V || count(g->vertex_slot()) != V ||
+        count(g->node_flags()) != N || count(g->node_second_begin()) != N + 1 ||
+        count(g->node_first_begin()) != N + 1)
+        return VG_ERR_CORRUPT_CONTENT;
+    if (!finite(g->bbox_diagonal()) || g->bbox_diagonal() < 0.0f) return VG_ERR_CORRUPT_CONTENT;
+
+    vg_graph out;
+    out.vertexCount = uint32_t(V);
+    out.nodeCount = uint32_t(N);
+    out.secondCount = uint32_t(S2);
+    out.firstCount = uint32_t(S1);
+    out.bboxDiagonal = g->bbox_diagonal();
+    out.positions = raw(g->positions());
+    out.vertexPatch = raw(g->vertex_patch());
+    out.vertexSlot = raw(g->vertex_slot());
+    out.nodeVertex = raw(g->node_vertex());
+    out.nodeFlags = raw(g->node_flags());
+    out.nodeSecondBegin = raw(g->node_second_begin());
+    out.nodeSecond = rawStructs<Membership>(g->node_second());
+    out.nodeFirstBegin = raw(g->node_first_begin());
+    out.nodeFirst = rawStructs<Membership>(g->node_first());
+    out.second = rawStructs<Patch>(g->second_patches());
+    out.first = rawStructs<Patch>(g->first_patches());
+    out.slots = raw(g->slots());
+    out.secondDistances = raw(g->second_distances());
+    out.firstDistances = raw(g->first_distances());
+
+    for (uint64_t i = 0; i < 3 * V; ++i)
+        if (!finite(out.positions[i])) return VG_ERR_CORRUPT_CONTENT;
+
+    // Patches of both layers, then their slot lists.
+    if (!patchesValid(out.second, S2, slotCount, packedCapacity(count(g->second_distances())), S1, false) ||
+        !patchesValid(out.first, S1, slotCount, packedCapacity(count(g->first_distances())), 0, true) ||
+        !slotsValid(out.second, S2, out.slots, N, V) || !slotsValid(out.first, S1, out.slots, N, V))
+        return VG_ERR_CORRUPT_CONTENT;
+
+    // Nodes: strictly increasing vertices, memberships that point back.
+    for (uint64_t n = 0; n < N; ++n) {
+        if (out.nodeVertex[n] >= V || (n > 0 && out.nodeVertex[n] <= out.nodeVertex[n - 1]))
+            return VG_ERR_CORRUPT_CONTENT;
+    }
+    if (!membershipsValid(out.nodeSecondBegin, out.nodeSecond, count(g->node_second()), N, out.second, S2, out.slots) ||
+        !membershipsValid(out.nodeFirstBegin, out.nodeFirst, count(g->node_first()), N, out.first, S1, out.slots))
+        return VG_ERR_CORRUPT_CONTENT;
+
+    // Vertices: the home slot holds the vertex (as itself, or as its node).
+    for (uint64_t v = 0; v < V; ++v) {
+        const uint32_t patch = out.vertexPatch[v];
+        if (patch == kNone) continue;
+        if (patch >= S2) return VG_ERR_CORRUPT_CONTENT;
+        const Patch& p = out.second[patch];
+        const uint32_t slot = out.vertexSlot[v];
+        if (slot >= p.slotCount) return VG_ERR_CORRUPT_CONTENT;
+        const uint32_t id = out.slots[p.slotBegin + slot];
+        if (slot < p.nodeCount ? out.nodeVertex[id] != v : id != v) return VG_ERR_CORRUPT_CONTENT;
+    }
+    // Every slot's vertex is a used vertex (so that its component is defined).
+    for (uint64_t i = 0; i < S2; ++i) {
+        const Patch& p = out.second[i];
+        for (uint32_t s = p.nodeCount; s < p.slotCount; ++s)
+            if (out.vertexPatch[out.slots[p.slotBegin + s]] == kNone) return VG_ERR_CORRUPT_CONTENT;
+    }
+    for (uint64_t n = 0; n < N; ++n)
+        if (out.vertexPatch[out.nodeVertex[n]] == kNone) return VG_ERR_CORRUPT_CONTENT;
+
+    graph = out;
+    return VG_OK;
+}
+
+}  // namespace vg

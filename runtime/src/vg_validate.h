@@ -1,0 +1,14 @@
+// Accepting a flatbuffer as a graph: the flatbuffers verifier (structure), then every
+// index and count the queries rely on (meaning), then the raw views of vg_graph.
+#pragma once
+
+#include <stddef.h>
+
+#include "vg_graph.h"
+
+namespace vg {
+
+// `flatbuffer` must be 8-byte aligned. Fills `graph` only on VG_OK.
+vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& graph);
+
+}  // namespace vg

@@ -1,0 +1,100 @@
+// vg_workspace_size / vg_workspace_init: one layout function computes the size and, given
+// memory, assigns the arrays, so the two can never disagree.
+#include "vg_workspace.h"
+
+#include <string.h>
+
+namespace {
+
+constexpr size_t kAlign = 16;
+constexpr uint32_t kMaxPatchSlots = 65536;
+
+struct Layout {
+    unsigned char* base;  // nullptr while only measuring
+    size_t used = 0;
+
+    template <class T>
+    T* take(uint64_t count) {
+        used = (used + kAlign - 1) & ~(kAlign - 1);
+        T* p = base ? reinterpret_cast<T*>(base + used) : nullptr;
+        used += size_t(count * sizeof(T));
+        return p;
+    }
+};
+
+void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
+    vg_workspace* w = L.take<vg_workspace>(1);
+    const uint64_t N = g.nodeCount, V = g.vertexCount;
+    vg_workspace tmp;
+    vg_workspace& o = ws ? *w : tmp;
+    vg::Frontier* const frontiers[2] = {&o.forward, &o.backward};
+    for (vg::Frontier* f : frontiers) {
+        f->dist = L.take<float>(N);
+        f->stamp = L.take<uint32_t>(N);
+        f->heapPos = L.take<uint32_t>(N);
+        f->heap = L.take<vg::HeapEntry>(N);
+        f->size = 0;
+        f->generation = 0;
+    }
+    o.potential = L.take<float>(N);
+    o.potentialStamp = L.take<uint32_t>(N);
+    o.detail = L.take<uint32_t>(g.firstCount);
+    o.patchTargets = L.take<uint32_t>(g.secondCount);
+    o.patchStamp = L.take<uint32_t>(g.secondCount);
+    o.vertexNextTarget = L.take<uint32_t>(V);
+    o.vertexTargetIndex = L.take<uint32_t>(V);
+    o.vertexStamp = L.take<uint32_t>(V);
+    o.patchNodeDistance = L.take<float>(kMaxPatchSlots);
+    o.patchNodeSlot = L.take<uint32_t>(kMaxPatchSlots);
+    o.graph = &g;
+    o.generation = 0;
+}
+
+void clearStamps(vg_workspace& ws) {
+    const vg_graph& g = *ws.graph;
+    memset(ws.forward.stamp, 0, sizeof(uint32_t) * g.nodeCount);
+    memset(ws.backward.stamp, 0, sizeof(uint32_t) * g.nodeCount);
+    memset(ws.potentialStamp, 0, sizeof(uint32_t) * g.nodeCount);
+    memset(ws.detail, 0, sizeof(uint32_t) * g.firstCount);
+    memset(ws.patchStamp, 0, sizeof(uint32_t) * g.secondCount);
+    memset(ws.vertexStamp, 0, sizeof(uint32_t) * g.vertexCount);
+}
+
+}  // namespace
+
+namespace vg {
+
+uint32_t beginQuery(vg_workspace& ws) {
+    if (++ws.generation == 0) {  // wrapped: old stamps could collide with new generations
+        clearStamps(ws);
+        ws.generation = 1;
+    }
+    ws.forward.reset(ws.generation);
+    ws.backward.reset(ws.generation);
+    return ws.generation;
+}
+
+}  // namespace vg
+
+extern "C" size_t vg_workspace_size(const vg_graph* graph) {
+    if (graph == nullptr) return 0;
+    Layout L{nullptr};
+    assign(*graph, L, nullptr);
+    return L.used + kAlign - 1;
+}
+
+extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size_t memory_size,
+                                       vg_workspace** out_workspace) {
+    if (out_workspace == nullptr) return VG_ERR_INVALID_ARGUMENT;
+    *out_workspace = nullptr;
+    if (graph == nullptr || memory == nullptr) return VG_ERR_INVALID_ARGUMENT;
+    if (memory_size < vg_workspace_size(graph)) return VG_ERR_BUFFER_TOO_SMALL;
+    unsigned char* base = reinterpret_cast<unsigned char*>(
+        (reinterpret_cast<uintptr_t>(memory) + kAlign - 1) & ~uintptr_t(kAlign - 1));
+    Layout L{base};
+    vg_workspace* ws = reinterpret_cast<vg_workspace*>(base);
+    assign(*graph, L, ws);
+    clearStamps(*ws);
+    *out_workspace = ws;
+    return VG_OK;
+}

@@ -1,0 +1,110 @@
+// A query's scratch memory, carved out of caller memory once: per-node labels and an
+// indexed binary heap for each search direction, per-patch and per-vertex marks. Labels
+// are valid only where their stamp equals the current generation, so a query never
+// clears arrays (one increment per query; a full reset once every 2^32 queries).
+#pragma once
+
+#include "vg_graph.h"
+
+namespace vg {
+
+struct HeapEntry {
+    float key;
+    uint32_t node;
+};
+
+// One search direction: tentative distances and the queue of open nodes.
+struct Frontier {
+    float* dist;
+    uint32_t* stamp;
+    uint32_t* heapPos;  // kNone when not in the heap
+    HeapEntry* heap;
+    uint32_t size;
+    uint32_t generation;
+
+    bool labelled(uint32_t u) const { return stamp[u] == generation; }
+    float distance(uint32_t u) const { return labelled(u) ? dist[u] : __builtin_inff(); }
+    bool empty() const { return size == 0; }
+    float topKey() const { return size ? heap[0].key : __builtin_inff(); }
+
+    // Lowers u's label to d (queue key `key`); false when u already had d or less.
+    bool improve(uint32_t u, float d, float key) {
+        if (stamp[u] == generation) {
+            if (!(d < dist[u])) return false;
+            dist[u] = d;
+            if (heapPos[u] != kNone) {
+                siftUp(heapPos[u], HeapEntry{key, u});
+                return true;
+            }
+        } else {
+            stamp[u] = generation;
+            dist[u] = d;
+        }
+        siftUp(size++, HeapEntry{key, u});  // new, or reopened after being settled
+        return true;
+    }
+
+    HeapEntry pop() {
+        const HeapEntry top = heap[0];
+        heapPos[top.node] = kNone;
+        const HeapEntry last = heap[--size];
+        if (size > 0) siftDown(0, last);
+        return top;
+    }
+
+    void reset(uint32_t gen) {
+        generation = gen;
+        size = 0;
+    }
+
+private:
+    void place(uint32_t i, HeapEntry e) {
+        heap[i] = e;
+        heapPos[e.node] = i;
+    }
+    void siftUp(uint32_t i, HeapEntry e) {
+        while (i > 0) {
+            const uint32_t parent = (i - 1) / 2;
+            if (!(e.key < heap[parent].key)) break;
+            place(i, heap[parent]);
+            i = parent;
+        }
+        place(i, e);
+    }
+    void siftDown(uint32_t i, HeapEntry e) {
+        for (;;) {
+            uint32_t child = 2 * i + 1;
+            if (child >= size) break;
+            if (child + 1 < size && heap[child + 1].key < heap[child].key) ++child;
+            if (!(heap[child].key < e.key)) break;
+            place(i, heap[child]);
+            i = child;
+        }
+        place(i, e);
+    }
+};
+
+}  // namespace vg
+
+struct vg_workspace {
+    const vg_graph* graph;
+    uint32_t generation;
+    vg::Frontier forward, backward;
+    float* potential;              // per node: A* potential of the current query
+    uint32_t* potentialStamp;
+    uint32_t* detail;  // per first-layer patch: searched through its second layer
+    uint32_t* patchTargets;        // per second-layer patch: first target vertex (vg_nearest)
+    uint32_t* patchStamp;
+    uint32_t* vertexNextTarget;    // per vertex: next target in the same patch
+    uint32_t* vertexTargetIndex;   // per vertex: its first index in the caller's target list
+    uint32_t* vertexStamp;
+    float* patchNodeDistance;      // per slot of one patch (vg_distance_field); 65536 entries
+    uint32_t* patchNodeSlot;
+};
+
+namespace vg {
+
+// Starts a query: a fresh generation for every stamp array.
+uint32_t beginQuery(vg_workspace& ws);
+
+}  // namespace vg

@@ -1,0 +1,75 @@
+#include "runtime_graph.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include "timing.h"
+
+namespace vorogeo::tools {
+
+bool RuntimeGraph::load(const std::string& path, std::string& error) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        error = "cannot open blob " + path;
+        return false;
+    }
+    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!open(bytes, error)) {
+        error = path + ": " + error;
+        return false;
+    }
+    return true;
+}
+
+bool RuntimeGraph::open(const std::vector<uint8_t>& blob, std::string& error) {
+    graph_ = nullptr;
+    blob_.resize(blob.size());
+    if (!blob.empty()) std::memcpy(blob_.data(), blob.data(), blob.size());
+    Stopwatch watch;
+    size_t need = 0;
+    vg_status st = vg_open_size(blob_.data(), blob_.size, &need);
+    if (st == VG_OK) {
+        memory_.resize(need);
+        st = vg_open(blob_.data(), blob_.size, memory_.data(), need, &graph_);
+    }
+    openSeconds_ = watch.seconds();
+    if (st != VG_OK) {
+        error = vg_status_string(st);
+        return false;
+    }
+    return true;
+}
+
+RuntimeWorkspace::RuntimeWorkspace(const RuntimeGraph& g) : graph_(g.graph()) {
+    const size_t n = vg_workspace_size(graph_);
+    memory_.resize(n);
+    if (vg_workspace_init(graph_, memory_.data(), n, &ws_) != VG_OK) {
+        std::fprintf(stderr, "vorogeo: cannot create a runtime workspace\n");
+        std::abort();
+    }
+}
+
+float RuntimeWorkspace::distance(uint32_t s, uint32_t t) const {
+    float d = 0;
+    const vg_status st = vg_distance(graph_, ws_, s, t, &d);
+    if (st != VG_OK) {
+        std::fprintf(stderr, "vorogeo: vg_distance(%u, %u): %s\n", s, t, vg_status_string(st));
+        std::abort();
+    }
+    return d;
+}
+
+std::vector<float> RuntimeWorkspace::field(const std::vector<uint32_t>& sources) const {
+    std::vector<float> out(vg_vertex_count(graph_));
+    const vg_status st = vg_distance_field(graph_, ws_, sources.data(), sources.size(), out.data());
+    if (st != VG_OK) {
+        std::fprintf(stderr, "vorogeo: vg_distance_field: %s\n", vg_status_string(st));
+        std::abort();
+    }
+    return out;
+}
+
+}  // namespace vorogeo::tools

@@ -1,0 +1,56 @@
+// The runtime as the tools and tests use it: a blob file read into memory, opened with
+// caller memory, and per-thread workspaces. Owns every byte the runtime is given.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "vorogeo.h"
+
+namespace vorogeo::tools {
+
+// Heap memory aligned to 16 bytes (vectors of bytes give no alignment promise).
+struct AlignedBytes {
+    std::unique_ptr<uint64_t[]> words;
+    size_t size = 0;
+    void resize(size_t n) {
+        words.reset(new uint64_t[(n + 7) / 8 + 1]);
+        size = n;
+    }
+    unsigned char* data() const { return reinterpret_cast<unsigned char*>(words.get()); }
+};
+
+class RuntimeGraph {
+public:
+    // Reads and opens a blob; false with a one-line reason.
+    bool load(const std::string& path, std::string& error);
+    bool open(const std::vector<uint8_t>& blob, std::string& error);
+
+    const vg_graph* graph() const { return graph_; }
+    uint32_t vertexCount() const { return vg_vertex_count(graph_); }
+    size_t blobBytes() const { return blob_.size; }
+    double openSeconds() const { return openSeconds_; }
+
+private:
+    AlignedBytes blob_, memory_;
+    const vg_graph* graph_ = nullptr;
+    double openSeconds_ = 0;
+};
+
+class RuntimeWorkspace {
+public:
+    explicit RuntimeWorkspace(const RuntimeGraph& g);
+    vg_workspace* get() const { return ws_; }
+
+    float distance(uint32_t s, uint32_t t) const;  // aborts the program on a status error
+    std::vector<float> field(const std::vector<uint32_t>& sources) const;
+
+private:
+    const vg_graph* graph_;
+    AlignedBytes memory_;
+    vg_workspace* ws_ = nullptr;
+};
+
+}  // namespace vorogeo::tools

@@ -114,10 +114,16 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
     params.delta = report.delta;
     params.bboxDiagonal = diagonal;
     if (progress) progress("writing blob", 0.0);
-    const std::vector<uint8_t> buffer = buildGraphBuffer(mesh, partition, geodesics.first, geodesics.second,
-                                                         secondInactive, params, report.quantisationMaxAbs);
-    report.flatbufferBytes = buffer.size();
+    std::vector<uint8_t> buffer = buildGraphBuffer(mesh, partition, geodesics.first, geodesics.second,
+                                                   secondInactive, params, Landmarks(), report.quantisationMaxAbs);
     clock.end("serialise");
+    if (progress) progress("landmarks", 0.0);
+    const Landmarks landmarks = computeLandmarks(buffer, options.landmarks);
+    buffer = buildGraphBuffer(mesh, partition, geodesics.first, geodesics.second, secondInactive, params, landmarks,
+                              report.quantisationMaxAbs);
+    if (progress) progress("landmarks", 1.0);
+    clock.end("landmarks");
+    report.flatbufferBytes = buffer.size();
     std::vector<uint8_t> blob = packContainer(buffer, options.compress, options.compressionLevel);
     report.blobBytes = blob.size();
     if (progress) progress("writing blob", 1.0);

@@ -21,6 +21,7 @@ struct BakeOptions {
     bool exactFirstLayer = false; // first-layer distances by exact runs (thesis) instead of composed
     bool compress = true;         // zstd frame, else the flatbuffer as is (zero-copy)
     int compressionLevel = 9;
+    uint32_t landmarks = 12;      // A* landmarks stored in the blob (0: straight-line bound only)
 };
 
 // The automatic pruning threshold (fraction of the bounding-box diagonal).

@@ -38,22 +38,54 @@ struct Packed12 {
     size_t size() const { return count; }
 };
 
-// Appends one patch matrix as 12-bit quanta; returns the scale.
-float quantise(const PatchMatrix& m, Packed12& out, double& maxAbs) {
+// Appends one patch matrix as 12-bit quanta; returns the scale. `full` stores every
+// row completely (first layer: the search reads whole rows, so they must be contiguous);
+// otherwise only the strict upper triangle (second layer: most of the blob).
+float quantise(const PatchMatrix& m, bool full, Packed12& out, double& maxAbs) {
     double largest = 0;
     for (double d : m.upper)
         if (std::isfinite(d)) largest = std::max(largest, d);
     const float scale = largest > 0 ? float(largest / kLargestQuantum) : 1.0f;
-    for (double d : m.upper) {
+    auto push = [&](double d) {
         if (!std::isfinite(d)) {
             out.push(kNoPath);
-            continue;
+            return;
         }
         const double q = std::min(kLargestQuantum, std::round(d / double(scale)));
         out.push(uint16_t(q));
         maxAbs = std::max(maxAbs, std::fabs(q * double(scale) - d));
+    };
+    if (full) {
+        for (uint32_t i = 0; i < m.rows; ++i)
+            for (uint32_t j = 0; j < m.rows; ++j) push(m.at(i, j));
+    } else {
+        for (double d : m.upper) push(d);
     }
     return scale;
+}
+
+// Mesh edges between two graph nodes, as sorted neighbour lists per node: the runtime
+// unfolds the two endpoint distances across such an edge, so a path may cross a patch
+// border between vertices instead of through one.
+void nodeEdges(const Mesh& mesh, const std::vector<uint32_t>& nodeOf, size_t nodeCount,
+               std::vector<uint32_t>& begin, std::vector<uint32_t>& neighbours) {
+    std::vector<std::vector<uint32_t>> lists(nodeCount);
+    for (uint32_t h = 0; h < mesh.halfedgeCount(); ++h) {
+        const int32_t twin = mesh.twin[h];
+        if (twin >= 0 && uint32_t(twin) < h) continue;  // each edge once
+        const uint32_t a = nodeOf[mesh.tail(int32_t(h))], b = nodeOf[mesh.head(int32_t(h))];
+        if (a == UINT32_MAX || b == UINT32_MAX || a == b) continue;
+        lists[a].push_back(b);
+        lists[b].push_back(a);
+    }
+    begin.assign(1, 0);
+    neighbours.clear();
+    for (auto& l : lists) {
+        std::sort(l.begin(), l.end());
+        l.erase(std::unique(l.begin(), l.end()), l.end());
+        neighbours.insert(neighbours.end(), l.begin(), l.end());
+        begin.push_back(uint32_t(neighbours.size()));
+    }
 }
 
 }  // namespace
@@ -61,7 +93,7 @@ float quantise(const PatchMatrix& m, Packed12& out, double& maxAbs) {
 std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partition,
                                       const std::vector<PatchMatrix>& first, const std::vector<PatchMatrix>& second,
                                       const std::vector<uint8_t>& secondInactive, const BlobParams& params,
-                                      double& quantisationMaxAbs) {
+                                      const Landmarks& landmarks, double& quantisationMaxAbs) {
     const uint32_t V = mesh.vertexCount();
     quantisationMaxAbs = 0;
 
@@ -104,7 +136,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
                 slots.push_back(v);
             }
         }
-        const float scale = quantise(m, secondDist, quantisationMaxAbs);
+        const float scale = quantise(m, false, secondDist, quantisationMaxAbs);
         secondRecords.emplace_back(begin, uint32_t(m.vertices.size()), m.nodeCount, matrixBegin, scale,
                                    partition.second[p].parent);
     }
@@ -118,7 +150,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
             firstOf[nodeOf[m.vertices[i]]].push_back(fb::Membership(p, i));
             slots.push_back(nodeOf[m.vertices[i]]);
         }
-        const float scale = quantise(m, firstDist, quantisationMaxAbs);
+        const float scale = quantise(m, true, firstDist, quantisationMaxAbs);
         const uint32_t comp = component[partition.first[p].seedVertex];
         firstRecords.emplace_back(begin, m.rows, m.rows, matrixBegin, scale, comp);
     }
@@ -135,6 +167,8 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     std::vector<fb::Membership> secondAll, firstAll;
     flatten(secondOf, secondBegin, secondAll);
     flatten(firstOf, firstBegin, firstAll);
+    std::vector<uint32_t> edgeBegin, edgeNeighbours;
+    nodeEdges(mesh, nodeOf, N, edgeBegin, edgeNeighbours);
 
     std::vector<float> positions(size_t(V) * 3);
     for (uint32_t v = 0; v < V; ++v) {
@@ -155,6 +189,11 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     auto nsV = b.CreateVectorOfStructs(secondAll);
     auto nfbV = b.CreateVector(firstBegin);
     auto nflV = b.CreateVectorOfStructs(firstAll);
+    auto nebV = b.CreateVector(edgeBegin);
+    auto neV = b.CreateVector(edgeNeighbours);
+    auto lvV = b.CreateVector(landmarks.vertices);
+    auto lsV = b.CreateVector(landmarks.scales);
+    auto lnV = b.CreateVector(landmarks.nodeValues);
     auto spV = b.CreateVectorOfStructs(secondRecords);
     auto fpV = b.CreateVectorOfStructs(firstRecords);
     auto slV = b.CreateVector(slots);
@@ -172,6 +211,11 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     g.add_node_second(nsV);
     g.add_node_first_begin(nfbV);
     g.add_node_first(nflV);
+    g.add_node_edge_begin(nebV);
+    g.add_node_edge(neV);
+    g.add_landmark_vertex(lvV);
+    g.add_landmark_scale(lsV);
+    g.add_node_landmarks(lnV);
     g.add_second_patches(spV);
     g.add_first_patches(fpV);
     g.add_slots(slV);

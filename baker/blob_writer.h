@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "landmarks.h"
 #include "mesh.h"
 #include "partition.h"
 #include "patch_geodesics.h"
@@ -23,10 +24,11 @@ struct BlobParams {
 // The flatbuffer. `first` holds the first-layer matrices over active nodes only;
 // `secondInactive` flags (per vertex) the nodes merged away in the second layer.
 // `quantisationMaxAbs` receives the largest absolute error of the 12-bit distances.
+// `landmarks` may be empty (the landmarks are computed from a first buffer without them).
 std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partition,
                                       const std::vector<PatchMatrix>& first, const std::vector<PatchMatrix>& second,
                                       const std::vector<uint8_t>& secondInactive, const BlobParams& params,
-                                      double& quantisationMaxAbs);
+                                      const Landmarks& landmarks, double& quantisationMaxAbs);
 
 // Header + payload (the flatbuffer, zstd-compressed or not).
 std::vector<uint8_t> packContainer(const std::vector<uint8_t>& flatbuffer, bool compress, int level);

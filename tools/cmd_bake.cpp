@@ -22,6 +22,7 @@ namespace {
 const char* kUsage =
     "usage: vorogeo bake MESH -o OUT.vgeo [--n1 N] [--n2 N] [--delta F] [--seed S] [--threads N]\n"
     "                    [--no-compress] [--report FILE.json] [--margin-rings R] [--exact-first-layer]\n"
+    "                    [--landmarks K]\n"
     "                    [--repair] [--quiet]\n"
     "  Precomputes the two-layer patch graph of MESH and writes it as a blob for the runtime.\n"
     "  --n1       first-layer patches (default: one per ~3,000 vertices)\n"
@@ -33,6 +34,7 @@ const char* kUsage =
     "  --no-compress  store the flatbuffer uncompressed, for zero-copy mapping\n"
     "  --report   write a JSON report (times, sizes, graph, peak memory)\n"
     "  --margin-rings  rings of faces around each patch for its geodesics (default 1)\n"
+    "  --landmarks     landmarks for the query's A* lower bounds, 0-64 (default 12)\n"
     "  --exact-first-layer  first-layer distances by exact runs, as the thesis (much slower)\n";
 
 // Progress on a terminal: one bar per stage, redrawn in place; otherwise one line per stage.
@@ -140,7 +142,7 @@ void printSummary(const BakeReport& r, const std::string& outPath, int threads, 
 }  // namespace
 
 int runBake(int argc, char** argv) {
-    const cli::Args args(argc, argv, {"-o", "--out", "--n1", "--n2", "--delta", "--seed", "--threads", "--report", "--margin-rings"},
+    const cli::Args args(argc, argv, {"-o", "--out", "--n1", "--n2", "--delta", "--seed", "--threads", "--report", "--margin-rings", "--landmarks"},
                          {"--no-compress", "--exact-first-layer", "--repair", "--quiet", "--help"});
     if (args.flag("--help")) {
         std::printf("%s", kUsage);
@@ -160,6 +162,9 @@ int runBake(int argc, char** argv) {
     const long long seed = args.integer("--seed", 1);
     if (seed < 0) throw cli::UsageError("--seed must be >= 0");
     o.seed = uint64_t(seed);
+    const long long landmarks = args.integer("--landmarks", 12);
+    if (landmarks < 0 || landmarks > 64) throw cli::UsageError("--landmarks must be in [0, 64]");
+    o.landmarks = uint32_t(landmarks);
     const long long rings = args.integer("--margin-rings", 1);
     if (rings < 0 || rings > 8) throw cli::UsageError("--margin-rings must be in [0, 8]");
     o.marginRings = uint32_t(rings);

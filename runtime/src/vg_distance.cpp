@@ -1,25 +1,32 @@
 // Point-to-point distance (thesis 3.7.1): bidirectional A* over the two-layer graph with
-// the straight-line heuristic. Both directions search one graph: the second layer of the
+// the straight-line heuristic, tightened by landmark bounds (vg_lower_bound.h). Both
+// directions search one graph: the second layer of the
 // first-layer patches around the source and the target, the overlay everywhere else (a
 // path that crosses another first-layer patch does so along one overlay edge, which is
 // the shortest crossing through that patch's second layer). Searching the same graph in
 // both directions is what makes the usual stopping rule sound.
 //
-// Potentials are the average of the two directions, p(v) = (|v - t| - |v - s|) / 2 for
-// the forward search and -p(v) backward, so both searches see the same non-negative
+// Potentials are the average of the two directions, p(v) = (b(v, t) - b(v, s)) / 2 for
+// the forward search and -p(v) backward, with b a lower bound of the distance, so both searches see the same non-negative
 // reduced edge lengths: no undiscovered path is shorter than topForward + topBackward.
-// Quantisation can make a stored length a hair shorter than the straight line; a node
+// Quantisation can make a stored length a hair shorter than a bound; a node
 // whose label drops after it was settled is simply queued again.
 #include "vg_query.h"
+#include "vg_lower_bound.h"
 #include "vg_search.h"
 
 namespace {
 
 using namespace vg;
 
-float pointToPoint(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float bound) {
+float pointToPoint(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance) {
     const float inf = __builtin_inff();
     if (s == t) return 0.0f;
+    if (s > t) {  // one order for both, so that d(s, t) and d(t, s) are the same number
+        const uint32_t x = s;
+        s = t;
+        t = x;
+    }
     if (g.vertexPatch[s] == kNone || g.vertexPatch[t] == kNone) return inf;
     if (vertexComponent(g, s) != vertexComponent(g, t)) return inf;
 
@@ -41,43 +48,61 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, 
 
     const float* ps = g.positions + 3 * uint64_t(s);
     const float* pt = g.positions + 3 * uint64_t(t);
+    landmarkDistances(g, s, ws.landmarkSource);
+    landmarkDistances(g, t, ws.landmarkTarget);
     auto potential = [&](uint32_t node) {
-        if (ws.potentialStamp[node] != gen) {
-            const float* p = g.positions + 3 * uint64_t(g.nodeVertex[node]);
-            const float ax = p[0] - pt[0], ay = p[1] - pt[1], az = p[2] - pt[2];
-            const float bx = p[0] - ps[0], by = p[1] - ps[1], bz = p[2] - ps[2];
-            ws.potential[node] =
-                0.5f * (__builtin_sqrtf(ax * ax + ay * ay + az * az) - __builtin_sqrtf(bx * bx + by * by + bz * bz));
-            ws.potentialStamp[node] = gen;
+        Potential& p = ws.potential[node];
+        if (p.stamp != gen) {
+            const float* r = ws.nodeRecords + uint64_t(node) * (3 + g.landmarkCount);
+            p.value = 0.5f * (nodeBound(g, r, pt, ws.landmarkTarget) - nodeBound(g, r, ps, ws.landmarkSource));
+            p.stamp = gen;
         }
-        return ws.potential[node];
+        return p.value;
     };
     Frontier& F = ws.forward;
     Frontier& B = ws.backward;
-    auto forwardKey = [&](uint32_t v, float dv) { return dv + potential(v); };
-    auto backwardKey = [&](uint32_t v, float dv) { return dv - potential(v); };
-    auto meetForward = [&](uint32_t v, float dv) {
-        if (B.labelled(v) && dv + B.dist[v] < best) best = dv + B.dist[v];
+    // Any path through v is at least its key plus half a lower bound of d(s, t) (the
+    // potentials are halves of lower bounds): such a node is left alone once that reaches
+    // the best found, with a margin for the unfolded crossings, which can undercut the
+    // best path through a node by a few percent.
+    float bound = euclidean(g, s, t);
+    const float viaLandmarks = landmarkBound(g, ws.landmarkSource, ws.landmarkTarget);
+    if (viaLandmarks > bound) bound = viaLandmarks;
+    const float halfBound = 0.5f * bound;
+    auto prune = [&](float key) { return key + halfBound < 1.05f * best ? key : __builtin_inff(); };
+    auto forwardKey = [&](uint32_t v, float dv) { return prune(dv + potential(v)); };
+    auto backwardKey = [&](uint32_t v, float dv) { return prune(dv - potential(v)); };
+    // A node labelled from both sides joins the two searches: through the node itself,
+    // and across each mesh edge to a neighbour node labelled from both sides too.
+    auto meet = [&](uint32_t v) {
+        if (!F.labelled(v) || !B.labelled(v)) return;
+        const float fv = F.label[v].dist, bv = B.label[v].dist;
+        if (fv + bv < best) best = fv + bv;
+        for (uint32_t e = g.nodeEdgeBegin[v]; e < g.nodeEdgeBegin[v + 1]; ++e) {
+            const uint32_t w = g.nodeEdge[e];
+            if (!F.labelled(w) || !B.labelled(w)) continue;
+            const float d = unfoldAcross(fv, F.label[w].dist, bv, B.label[w].dist, euclidean(g, g.nodeVertex[v], g.nodeVertex[w]));
+            if (d < best) best = d;
+        }
     };
-    auto meetBackward = [&](uint32_t v, float dv) {
-        if (F.labelled(v) && dv + F.dist[v] < best) best = dv + F.dist[v];
-    };
+    auto meetForward = [&](uint32_t v, float) { meet(v); };
+    auto meetBackward = [&](uint32_t v, float) { meet(v); };
     seedEndpoint(g, s, 0.0f, F, forwardKey, meetForward);
     seedEndpoint(g, t, 0.0f, B, backwardKey, meetBackward);
 
     // One side exhausted: every node it can reach is final, so the best meeting is known.
     while (!F.empty() && !B.empty()) {
         const float lower = F.topKey() + B.topKey();
-        if (!(lower < best) || lower > bound) break;
+        if (!(lower < best) || lower > maxDistance) break;
         if (F.topKey() <= B.topKey()) {
             const uint32_t u = F.pop().node;
-            relaxNode(g, u, F.dist[u], scope, F, forwardKey, meetForward);
+            relaxNode(g, u, F.label[u].dist, scope, F, forwardKey, meetForward);
         } else {
             const uint32_t u = B.pop().node;
-            relaxNode(g, u, B.dist[u], scope, B, backwardKey, meetBackward);
+            relaxNode(g, u, B.label[u].dist, scope, B, backwardKey, meetBackward);
         }
     }
-    return best <= bound ? best : inf;
+    return best <= maxDistance ? best : inf;
 }
 
 }  // namespace

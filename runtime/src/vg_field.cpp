@@ -1,6 +1,8 @@
 // Multi-source all-destinations distances (thesis 3.7.2): one Dijkstra over the second
 // layer everywhere (every patch must be reached, so the overlay saves nothing), then every
-// other vertex takes the best of its patch's settled nodes plus the stored entry.
+// other vertex takes the best of its patch's settled nodes plus the stored entry, and the
+// unfolded crossing of the border edges at that best node (as vg_distance does where its
+// two searches meet).
 #include "vg_query.h"
 #include "vg_search.h"
 
@@ -9,14 +11,16 @@ namespace {
 using namespace vg;
 
 // Vertices of one patch that are not active nodes: best over its settled active nodes.
-void fillPatch(const vg_graph& g, const Patch& p, const Frontier& f, vg_workspace& ws, float* out) {
+void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_workspace& ws, float* out) {
+    const Patch& p = g.second[patchIndex];
     const uint32_t* slots = g.slots + p.slotBegin;
+    for (uint32_t j = p.nodeCount; j < p.slotCount; ++j) ws.patchBestNode[j] = kNone;
     uint32_t reached = 0;
     for (uint32_t i = 0; i < p.nodeCount; ++i) {
         const uint32_t n = slots[i];
         if (nodeActive(g, n) && f.labelled(n)) {
             ws.patchNodeSlot[reached] = i;
-            ws.patchNodeDistance[reached] = f.dist[n];
+            ws.patchNodeDistance[reached] = f.label[n].dist;
             ++reached;
         }
     }
@@ -37,7 +41,28 @@ void fillPatch(const vg_graph& g, const Patch& p, const Frontier& f, vg_workspac
             if (q == kNoPathQuantum) continue;
             const float d = base + float(q) * p.scale;
             float& o = out[slots[j]];
-            if (d < o) o = d;
+            if (d < o) {
+                o = d;
+                ws.patchBestNode[j] = r;
+            }
+        }
+    }
+    // The path may cross the border on an edge next to the best node rather than at it.
+    for (uint32_t j = p.nodeCount; j < p.slotCount; ++j) {
+        const uint32_t r = ws.patchBestNode[j];
+        if (r == kNone) continue;
+        const uint32_t i = ws.patchNodeSlot[r], u = slots[i];
+        const float du = ws.patchNodeDistance[r], cu = entry(p, g.secondDistances, i, j);
+        float& o = out[slots[j]];
+        for (uint32_t e = g.nodeEdgeBegin[u]; e < g.nodeEdgeBegin[u + 1]; ++e) {
+            const uint32_t w = g.nodeEdge[e];
+            if (!nodeActive(g, w) || !f.labelled(w)) continue;
+            for (uint32_t m = g.nodeSecondBegin[w]; m < g.nodeSecondBegin[w + 1]; ++m) {
+                if (g.nodeSecond[m].patch != patchIndex) continue;
+                const float cw = entry(p, g.secondDistances, g.nodeSecond[m].slot, j);
+                const float d = unfoldAcross(du, f.label[w].dist, cu, cw, euclidean(g, g.nodeVertex[u], g.nodeVertex[w]));
+                if (d < o) o = d;
+            }
         }
     }
 }
@@ -66,12 +91,12 @@ extern "C" vg_status vg_distance_field(const vg_graph* graph, vg_workspace* work
         if (g.vertexPatch[sources[i]] != kNone) seedEndpoint(g, sources[i], 0.0f, F, key, none);
     while (!F.empty()) {
         const uint32_t u = F.pop().node;
-        relaxNode(g, u, F.dist[u], everywhere, F, key, none);
+        relaxNode(g, u, F.label[u].dist, everywhere, F, key, none);
     }
 
     for (uint32_t n = 0; n < g.nodeCount; ++n)
-        if (nodeActive(g, n) && F.labelled(n)) out_distances[g.nodeVertex[n]] = F.dist[n];
-    for (uint32_t p = 0; p < g.secondCount; ++p) fillPatch(g, g.second[p], F, ws, out_distances);
+        if (nodeActive(g, n) && F.labelled(n)) out_distances[g.nodeVertex[n]] = F.label[n].dist;
+    for (uint32_t p = 0; p < g.secondCount; ++p) fillPatch(g, p, F, ws, out_distances);
     // A source's own patches also hold the direct entries: paths that touch no node.
     for (size_t i = 0; i < source_count; ++i) {
         const uint32_t s = sources[i];

@@ -13,6 +13,8 @@ namespace vg {
 constexpr uint32_t kNone = 0xFFFFFFFFu;
 constexpr uint32_t kNoPathQuantum = 4095;
 constexpr uint8_t kNodeMergedAway = 1;  // node_flags bit 0
+constexpr uint32_t kMaxLandmarks = 64;
+constexpr uint16_t kLandmarkUnreachable = 65535;
 
 // Mirrors vorogeo.fb.PatchRecord / Membership (little-endian flatbuffer structs; the
 // layout is checked against the generated code in vg_open.cpp).
@@ -44,6 +46,11 @@ struct vg_graph {
     const vg::Membership* nodeSecond;
     const uint32_t* nodeFirstBegin;
     const vg::Membership* nodeFirst;
+    const uint32_t* nodeEdgeBegin;   // N + 1 offsets into nodeEdge
+    const uint32_t* nodeEdge;        // neighbour nodes joined by a mesh edge
+    uint32_t landmarkCount;          // K, at most kMaxLandmarks
+    const float* landmarkScale;      // K
+    const uint16_t* nodeLandmarks;   // N x K, node-major; kLandmarkUnreachable = no path
     const vg::Patch* second;
     const vg::Patch* first;
     const uint32_t* slots;
@@ -65,12 +72,13 @@ inline uint32_t quantum(const uint8_t* packed, uint64_t k) {
     return (k & 1) ? (uint32_t(p[1]) >> 4) | (uint32_t(p[2]) << 4) : uint32_t(p[0]) | ((uint32_t(p[1]) & 0xFu) << 8);
 }
 
-// First entry of row i (its entry for column i + 1) in an upper-triangle matrix of n rows.
+// Second layer (upper triangle): first entry of row i, its entry for column i + 1.
 inline uint64_t rowStart(const Patch& p, uint32_t i) {
     return p.matrixBegin + uint64_t(i) * (2 * uint64_t(p.slotCount) - i - 1) / 2;
 }
 
-// Distance between slots i and j of a patch (0 on the diagonal, +inf for "no path").
+// Distance between slots i and j of a second-layer patch (0 on the diagonal, +inf for
+// "no path").
 inline float entry(const Patch& p, const uint8_t* packed, uint32_t i, uint32_t j) {
     if (i == j) return 0.0f;
     if (i > j) {
@@ -109,6 +117,25 @@ inline void forEachPatchOf(const vg_graph& g, uint32_t v, F&& f) {
     }
     for (uint32_t m = g.nodeSecondBegin[node]; m < g.nodeSecondBegin[node + 1]; ++m)
         f(g.nodeSecond[m].patch, g.nodeSecond[m].slot);
+}
+
+// The straight path from s to t across the edge (u, w) of length l: s and t are unfolded
+// into the plane on opposite sides of the edge from their distances a = d(s,u),
+// b = d(s,w), c = d(t,u), e = d(t,w). A geodesic that crosses a patch border between two
+// vertices is this short, where a path through a border vertex is longer (by up to a few
+// percent for pairs a few edges apart). +inf when the segment misses the edge's interior
+// or the distances do not form triangles with the edge.
+inline float unfoldAcross(float a, float b, float c, float e, float l) {
+    if (!(l > 0.0f)) return __builtin_inff();
+    const float inv = 0.5f / l, l2 = l * l;
+    const float xs = (a * a - b * b + l2) * inv, ys2 = a * a - xs * xs;
+    const float xt = (c * c - e * e + l2) * inv, yt2 = c * c - xt * xt;
+    if (!(ys2 > 0.0f) || !(yt2 > 0.0f)) return __builtin_inff();  // also rejects NaN and +inf
+    const float ys = __builtin_sqrtf(ys2), yt = __builtin_sqrtf(yt2);
+    const float x = xs + (xt - xs) * (ys / (ys + yt));  // where the segment meets the edge line
+    if (!(x > 0.0f && x < l)) return __builtin_inff();
+    const float dx = xt - xs, dy = yt + ys;
+    return __builtin_sqrtf(dx * dx + dy * dy);
 }
 
 inline float euclidean(const vg_graph& g, uint32_t a, uint32_t b) {

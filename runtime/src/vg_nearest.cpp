@@ -80,7 +80,7 @@ extern "C" vg_status vg_nearest(const vg_graph* graph, vg_workspace* workspace, 
         seedEndpoint(g, source, 0.0f, F, key, none);
         while (!F.empty() && F.topKey() < best.distance) {
             const uint32_t u = F.pop().node;
-            const float du = F.dist[u];
+            const float du = F.label[u].dist;
             const uint32_t v = g.nodeVertex[u];
             if (ws.vertexStamp[v] == gen) best.offer(du, ws.vertexTargetIndex[v]);
             for (uint32_t m = g.nodeSecondBegin[u]; m < g.nodeSecondBegin[u + 1]; ++m)

@@ -20,20 +20,25 @@ struct Scope {
     bool detailed(uint32_t firstPatch) const { return everywhere || detail[firstPatch] == generation; }
 };
 
-// Relaxes row `i` of patch `p` (its node columns) from a node at distance du.
-// keyOf(v, dv) gives v's queue key; onImprove(v, dv) runs after v's label dropped to dv.
+// Relaxes row `i` of second-layer patch `patch` (its active node columns) from distance
+// du. keyOf(v, dv) gives v's queue key, +inf to leave v alone (it cannot improve the
+// answer); onImprove(v, dv) runs after v's label dropped to dv.
 template <class KeyOf, class OnImprove>
-inline void relaxRow(const vg_graph& g, const Patch& p, const uint8_t* packed, bool skipMerged, uint32_t i,
-                     float du, Frontier& f, KeyOf&& keyOf, OnImprove&& onImprove) {
+inline void relaxSecondRow(const vg_graph& g, uint32_t patch, uint32_t i, float du, Frontier& f, KeyOf&& keyOf,
+                           OnImprove&& onImprove) {
+    const Patch& p = g.second[patch];
     const uint32_t* slots = g.slots + p.slotBegin;
+    const uint8_t* packed = g.secondDistances;
     auto visit = [&](uint32_t j, uint64_t k) {
         const uint32_t q = quantum(packed, k);
         if (q == kNoPathQuantum) return;
         const uint32_t v = slots[j];
-        if (skipMerged && !nodeActive(g, v)) return;
+        if (!nodeActive(g, v)) return;
         const float dv = du + float(q) * p.scale;
-        if (f.labelled(v) && !(dv < f.dist[v])) return;
-        f.improve(v, dv, keyOf(v, dv));
+        if (!f.better(v, dv)) return;
+        const float key = keyOf(v, dv);
+        if (key == __builtin_inff()) return;
+        f.improve(v, dv, key, patch);
         onImprove(v, dv);
     };
     const uint32_t before = i < p.nodeCount ? i : p.nodeCount;  // an endpoint's slot may follow the nodes
@@ -42,20 +47,43 @@ inline void relaxRow(const vg_graph& g, const Patch& p, const uint8_t* packed, b
     for (uint32_t j = i + 1; j < p.nodeCount; ++j) visit(j, row + j);
 }
 
-// Relaxes every edge of node u (label du) allowed by the scope.
+// Relaxes row `i` of first-layer patch `patch` (stored whole, so the row is contiguous).
+template <class KeyOf, class OnImprove>
+inline void relaxFirstRow(const vg_graph& g, uint32_t patch, uint32_t i, float du, Frontier& f, KeyOf&& keyOf,
+                          OnImprove&& onImprove) {
+    const Patch& p = g.first[patch];
+    const uint32_t* slots = g.slots + p.slotBegin;
+    const uint64_t row = p.matrixBegin + uint64_t(i) * p.slotCount;
+    for (uint32_t j = 0; j < p.slotCount; ++j) {
+        const uint32_t q = quantum(g.firstDistances, row + j);
+        if (q == kNoPathQuantum || j == i) continue;
+        const uint32_t v = slots[j];
+        const float dv = du + float(q) * p.scale;
+        if (!f.better(v, dv)) continue;
+        const float key = keyOf(v, dv);
+        if (key == __builtin_inff()) continue;
+        f.improve(v, dv, key, patch | kFirstLayerBit);
+        onImprove(v, dv);
+    }
+}
+
+// Relaxes every edge of node u (label du) allowed by the scope, except the row of the
+// patch that labelled u: a patch matrix holds shortest paths inside the patch, so going
+// on through the same patch cannot beat the row u came from.
 template <class KeyOf, class OnImprove>
 inline void relaxNode(const vg_graph& g, uint32_t u, float du, const Scope& scope, Frontier& f, KeyOf&& keyOf,
                       OnImprove&& onImprove) {
+    const uint32_t from = f.label[u].via;
     for (uint32_t m = g.nodeSecondBegin[u]; m < g.nodeSecondBegin[u + 1]; ++m) {
-        const Patch& p = g.second[g.nodeSecond[m].patch];
-        if (scope.detailed(p.parent))
-            relaxRow(g, p, g.secondDistances, true, g.nodeSecond[m].slot, du, f, keyOf, onImprove);
+        const uint32_t patch = g.nodeSecond[m].patch;
+        if (patch != from && scope.detailed(g.second[patch].parent))
+            relaxSecondRow(g, patch, g.nodeSecond[m].slot, du, f, keyOf, onImprove);
     }
     if (scope.everywhere) return;
     for (uint32_t m = g.nodeFirstBegin[u]; m < g.nodeFirstBegin[u + 1]; ++m) {
-        if (scope.detailed(g.nodeFirst[m].patch)) continue;
-        const Patch& p = g.first[g.nodeFirst[m].patch];
-        relaxRow(g, p, g.firstDistances, false, g.nodeFirst[m].slot, du, f, keyOf, onImprove);
+        const uint32_t patch = g.nodeFirst[m].patch;
+        if ((patch | kFirstLayerBit) != from && !scope.detailed(patch))
+            relaxFirstRow(g, patch, g.nodeFirst[m].slot, du, f, keyOf, onImprove);
     }
 }
 
@@ -71,15 +99,14 @@ inline void seedEndpoint(const vg_graph& g, uint32_t x, float offset, Frontier& 
                          OnImprove&& onImprove) {
     const uint32_t node = vertexNode(g, x);
     if (node != kNone && nodeActive(g, node)) {
-        if (f.labelled(node) && !(offset < f.dist[node])) return;
-        f.improve(node, offset, keyOf(node, offset));
+        if (!f.better(node, offset)) return;
+        const float key = keyOf(node, offset);
+        if (key == __builtin_inff()) return;
+        f.improve(node, offset, key, kNone);
         onImprove(node, offset);
         return;
     }
-    forEachPatchOf(g, x, [&](uint32_t patch, uint32_t slot) {
-        const Patch& p = g.second[patch];
-        relaxRow(g, p, g.secondDistances, true, slot, offset, f, keyOf, onImprove);
-    });
+    forEachPatchOf(g, x, [&](uint32_t patch, uint32_t slot) { relaxSecondRow(g, patch, slot, offset, f, keyOf, onImprove); });
 }
 
 }  // namespace vg

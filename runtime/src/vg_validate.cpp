@@ -35,14 +35,16 @@ bool finite(float x) { return x == x && x - x == 0.0f; }
 // Entries a packed 12-bit array of `bytes` bytes holds (entry k ends at byte 3(k/2)+1+k%2).
 uint64_t packedCapacity(uint64_t bytes) { return (bytes / 3) * 2 + (bytes % 3 == 2 ? 1 : 0); }
 
+// Second layer: upper-triangle matrices over all slots. First layer (`nodesOnly`): whole
+// node x node matrices (a lone first-layer patch has no nodes).
 bool patchesValid(const Patch* patches, uint64_t patchCount, uint64_t slotCount, uint64_t entryCapacity,
                   uint64_t parentLimit, bool nodesOnly) {
     for (uint64_t i = 0; i < patchCount; ++i) {
         const Patch& p = patches[i];
         if (uint64_t(p.slotBegin) + p.slotCount > slotCount) return false;
-        if (p.slotCount == 0 || p.nodeCount > p.slotCount || p.slotCount > 65536u) return false;
+        if ((p.slotCount == 0 && !nodesOnly) || p.nodeCount > p.slotCount || p.slotCount > 65536u) return false;
         if (nodesOnly && p.nodeCount != p.slotCount) return false;
-        const uint64_t n = p.slotCount, entries = n * (n - 1) / 2;
+        const uint64_t n = p.slotCount, entries = nodesOnly ? n * n : n * (n - 1) / 2;
         if (p.matrixBegin > entryCapacity || entries > entryCapacity - p.matrixBegin) return false;
         if (!finite(p.scale) || p.scale < 0.0f) return false;
         if (parentLimit != 0 && p.parent >= parentLimit) return false;
@@ -91,7 +93,7 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& 
         return VG_ERR_CORRUPT_CONTENT;
     if (count(g->positions()) != 3 * V || count(g->vertex_patch()) != V || count(g->vertex_slot()) != V ||
         count(g->node_flags()) != N || count(g->node_second_begin()) != N + 1 ||
-        count(g->node_first_begin()) != N + 1)
+        count(g->node_first_begin()) != N + 1 || count(g->node_edge_begin()) != N + 1)
         return VG_ERR_CORRUPT_CONTENT;
     if (!finite(g->bbox_diagonal()) || g->bbox_diagonal() < 0.0f) return VG_ERR_CORRUPT_CONTENT;
 
@@ -110,6 +112,17 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& 
     out.nodeSecond = rawStructs<Membership>(g->node_second());
     out.nodeFirstBegin = raw(g->node_first_begin());
     out.nodeFirst = rawStructs<Membership>(g->node_first());
+    out.nodeEdgeBegin = raw(g->node_edge_begin());
+    out.nodeEdge = raw(g->node_edge());
+    const uint64_t K = count(g->landmark_vertex());
+    if (K > kMaxLandmarks || count(g->landmark_scale()) != K || count(g->node_landmarks()) != N * K)
+        return VG_ERR_CORRUPT_CONTENT;
+    out.landmarkCount = uint32_t(K);
+    out.landmarkScale = raw(g->landmark_scale());
+    out.nodeLandmarks = raw(g->node_landmarks());
+    for (uint64_t k = 0; k < K; ++k)
+        if (!finite(out.landmarkScale[k]) || out.landmarkScale[k] < 0.0f || g->landmark_vertex()->Get(k) >= V)
+            return VG_ERR_CORRUPT_CONTENT;
     out.second = rawStructs<Patch>(g->second_patches());
     out.first = rawStructs<Patch>(g->first_patches());
     out.slots = raw(g->slots());
@@ -133,6 +146,14 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& 
     if (!membershipsValid(out.nodeSecondBegin, out.nodeSecond, count(g->node_second()), N, out.second, S2, out.slots) ||
         !membershipsValid(out.nodeFirstBegin, out.nodeFirst, count(g->node_first()), N, out.first, S1, out.slots))
         return VG_ERR_CORRUPT_CONTENT;
+
+    // Node edges: offsets in order, neighbours in range.
+    if (out.nodeEdgeBegin[0] != 0 || out.nodeEdgeBegin[N] != count(g->node_edge())) return VG_ERR_CORRUPT_CONTENT;
+    for (uint64_t n = 0; n < N; ++n) {
+        if (out.nodeEdgeBegin[n] > out.nodeEdgeBegin[n + 1]) return VG_ERR_CORRUPT_CONTENT;
+        for (uint32_t e = out.nodeEdgeBegin[n]; e < out.nodeEdgeBegin[n + 1]; ++e)
+            if (out.nodeEdge[e] >= N) return VG_ERR_CORRUPT_CONTENT;
+    }
 
     // Vertices: the home slot holds the vertex (as itself, or as its node).
     for (uint64_t v = 0; v < V; ++v) {

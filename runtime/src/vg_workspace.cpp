@@ -29,15 +29,13 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     vg_workspace& o = ws ? *w : tmp;
     vg::Frontier* const frontiers[2] = {&o.forward, &o.backward};
     for (vg::Frontier* f : frontiers) {
-        f->dist = L.take<float>(N);
-        f->stamp = L.take<uint32_t>(N);
-        f->heapPos = L.take<uint32_t>(N);
+        f->label = L.take<vg::Label>(N);
         f->heap = L.take<vg::HeapEntry>(N);
         f->size = 0;
         f->generation = 0;
     }
-    o.potential = L.take<float>(N);
-    o.potentialStamp = L.take<uint32_t>(N);
+    o.potential = L.take<vg::Potential>(N);
+    o.nodeRecords = L.take<float>(N * (3 + uint64_t(g.landmarkCount)));
     o.detail = L.take<uint32_t>(g.firstCount);
     o.patchTargets = L.take<uint32_t>(g.secondCount);
     o.patchStamp = L.take<uint32_t>(g.secondCount);
@@ -46,18 +44,37 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.vertexStamp = L.take<uint32_t>(V);
     o.patchNodeDistance = L.take<float>(kMaxPatchSlots);
     o.patchNodeSlot = L.take<uint32_t>(kMaxPatchSlots);
+    o.patchBestNode = L.take<uint32_t>(kMaxPatchSlots);
     o.graph = &g;
     o.generation = 0;
 }
 
 void clearStamps(vg_workspace& ws) {
     const vg_graph& g = *ws.graph;
-    memset(ws.forward.stamp, 0, sizeof(uint32_t) * g.nodeCount);
-    memset(ws.backward.stamp, 0, sizeof(uint32_t) * g.nodeCount);
-    memset(ws.potentialStamp, 0, sizeof(uint32_t) * g.nodeCount);
+    for (uint32_t n = 0; n < g.nodeCount; ++n) {
+        ws.forward.label[n].stamp = 0;
+        ws.backward.label[n].stamp = 0;
+        ws.potential[n].stamp = 0;
+    }
     memset(ws.detail, 0, sizeof(uint32_t) * g.firstCount);
     memset(ws.patchStamp, 0, sizeof(uint32_t) * g.secondCount);
     memset(ws.vertexStamp, 0, sizeof(uint32_t) * g.vertexCount);
+}
+
+// The A* bounds read a node's position and landmark distances together: one record per
+// node, decoded once per workspace instead of gathered from three arrays per query.
+void fillNodeRecords(const vg_graph& g, float* records) {
+    const uint32_t K = g.landmarkCount, stride = 3 + K;
+    for (uint32_t n = 0; n < g.nodeCount; ++n) {
+        float* r = records + uint64_t(n) * stride;
+        const float* p = g.positions + 3 * uint64_t(g.nodeVertex[n]);
+        r[0] = p[0];
+        r[1] = p[1];
+        r[2] = p[2];
+        const uint16_t* q = g.nodeLandmarks + uint64_t(n) * K;
+        for (uint32_t k = 0; k < K; ++k)
+            r[3 + k] = q[k] == vg::kLandmarkUnreachable ? __builtin_inff() : float(q[k]) * g.landmarkScale[k];
+    }
 }
 
 }  // namespace
@@ -95,6 +112,7 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
     vg_workspace* ws = reinterpret_cast<vg_workspace*>(base);
     assign(*graph, L, ws);
     clearStamps(*ws);
+    fillNodeRecords(*graph, ws->nodeRecords);
     *out_workspace = ws;
     return VG_OK;
 }

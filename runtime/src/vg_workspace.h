@@ -8,45 +8,53 @@
 
 namespace vg {
 
+constexpr uint32_t kFirstLayerBit = 0x80000000u;
+
+struct Potential {
+    float value;
+    uint32_t stamp;
+};
+
 struct HeapEntry {
     float key;
     uint32_t node;
 };
 
+// A node's label in one search direction (one cache line holds four).
+struct Label {
+    float dist;
+    uint32_t stamp;    // == generation when the label belongs to the current query
+    uint32_t via;      // patch whose row gave the label (first layer: | kFirstLayerBit)
+    uint32_t heapPos;  // kNone when not in the heap
+};
+
 // One search direction: tentative distances and the queue of open nodes.
 struct Frontier {
-    float* dist;
-    uint32_t* stamp;
-    uint32_t* heapPos;  // kNone when not in the heap
+    Label* label;
     HeapEntry* heap;
     uint32_t size;
     uint32_t generation;
 
-    bool labelled(uint32_t u) const { return stamp[u] == generation; }
-    float distance(uint32_t u) const { return labelled(u) ? dist[u] : __builtin_inff(); }
+    bool labelled(uint32_t u) const { return label[u].stamp == generation; }
+    // True when d would lower u's label (or u has none in this query).
+    bool better(uint32_t u, float d) const { return label[u].stamp != generation || d < label[u].dist; }
     bool empty() const { return size == 0; }
     float topKey() const { return size ? heap[0].key : __builtin_inff(); }
 
-    // Lowers u's label to d (queue key `key`); false when u already had d or less.
-    bool improve(uint32_t u, float d, float key) {
-        if (stamp[u] == generation) {
-            if (!(d < dist[u])) return false;
-            dist[u] = d;
-            if (heapPos[u] != kNone) {
-                siftUp(heapPos[u], HeapEntry{key, u});
-                return true;
-            }
-        } else {
-            stamp[u] = generation;
-            dist[u] = d;
-        }
-        siftUp(size++, HeapEntry{key, u});  // new, or reopened after being settled
-        return true;
+    // Sets u's label to d (queue key `key`), reached through the row of patch `from`;
+    // the caller checked better(u, d).
+    void improve(uint32_t u, float d, float key, uint32_t from) {
+        Label& l = label[u];
+        const bool queued = l.stamp == generation && l.heapPos != kNone;
+        l.stamp = generation;
+        l.dist = d;
+        l.via = from;
+        siftUp(queued ? l.heapPos : size++, HeapEntry{key, u});  // decrease, or (re)open
     }
 
     HeapEntry pop() {
         const HeapEntry top = heap[0];
-        heapPos[top.node] = kNone;
+        label[top.node].heapPos = kNone;
         const HeapEntry last = heap[--size];
         if (size > 0) siftDown(0, last);
         return top;
@@ -60,7 +68,7 @@ struct Frontier {
 private:
     void place(uint32_t i, HeapEntry e) {
         heap[i] = e;
-        heapPos[e.node] = i;
+        label[e.node].heapPos = i;
     }
     void siftUp(uint32_t i, HeapEntry e) {
         while (i > 0) {
@@ -90,8 +98,10 @@ struct vg_workspace {
     const vg_graph* graph;
     uint32_t generation;
     vg::Frontier forward, backward;
-    float* potential;              // per node: A* potential of the current query
-    uint32_t* potentialStamp;
+    float landmarkSource[vg::kMaxLandmarks];  // d(L, source) and d(L, target) of the current query
+    float landmarkTarget[vg::kMaxLandmarks];
+    vg::Potential* potential;      // per node: A* potential of the current query
+    float* nodeRecords;            // per node: position, then d(L, node) per landmark (+inf: none)
     uint32_t* detail;  // per first-layer patch: searched through its second layer
     uint32_t* patchTargets;        // per second-layer patch: first target vertex (vg_nearest)
     uint32_t* patchStamp;
@@ -100,6 +110,7 @@ struct vg_workspace {
     uint32_t* vertexStamp;
     float* patchNodeDistance;      // per slot of one patch (vg_distance_field); 65536 entries
     uint32_t* patchNodeSlot;
+    uint32_t* patchBestNode;       // per slot of one patch: index of its best node so far
 };
 
 namespace vg {

@@ -69,7 +69,7 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, 
     const float viaLandmarks = landmarkBound(g, ws.landmarkSource, ws.landmarkTarget);
     if (viaLandmarks > bound) bound = viaLandmarks;
     const float halfBound = 0.5f * bound;
-    auto prune = [&](float key) { return key + halfBound < 1.05f * best ? key : __builtin_inff(); };
+    auto prune = [&](float key) { return key + halfBound < kUnfoldSlack * best ? key : __builtin_inff(); };
     auto forwardKey = [&](uint32_t v, float dv) { return prune(dv + potential(v)); };
     auto backwardKey = [&](uint32_t v, float dv) { return prune(dv - potential(v)); };
     // A node labelled from both sides joins the two searches: through the node itself,
@@ -81,19 +81,19 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, 
         for (uint32_t e = g.nodeEdgeBegin[v]; e < g.nodeEdgeBegin[v + 1]; ++e) {
             const uint32_t w = g.nodeEdge[e];
             if (!F.labelled(w) || !B.labelled(w)) continue;
-            const float d = unfoldAcross(fv, F.label[w].dist, bv, B.label[w].dist, euclidean(g, g.nodeVertex[v], g.nodeVertex[w]));
+            const float d = crossing(fv, F.label[w].dist, bv, B.label[w].dist, euclidean(g, g.nodeVertex[v], g.nodeVertex[w]));
             if (d < best) best = d;
         }
     };
     auto meetForward = [&](uint32_t v, float) { meet(v); };
     auto meetBackward = [&](uint32_t v, float) { meet(v); };
-    seedEndpoint(g, s, 0.0f, F, forwardKey, meetForward);
-    seedEndpoint(g, t, 0.0f, B, backwardKey, meetBackward);
+    seedEndpoint(g, s, 0, F, forwardKey, meetForward);
+    seedEndpoint(g, t, 0, B, backwardKey, meetBackward);
 
     // One side exhausted: every node it can reach is final, so the best meeting is known.
     while (!F.empty() && !B.empty()) {
         const float lower = F.topKey() + B.topKey();
-        if (!(lower < best) || lower > maxDistance) break;
+        if (!(lower < best) || lower > kUnfoldSlack * maxDistance) break;
         if (F.topKey() <= B.topKey()) {
             const uint32_t u = F.pop().node;
             relaxNode(g, u, F.label[u].dist, scope, F, forwardKey, meetForward);

@@ -56,11 +56,12 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
         float& o = out[slots[j]];
         for (uint32_t e = g.nodeEdgeBegin[u]; e < g.nodeEdgeBegin[u + 1]; ++e) {
             const uint32_t w = g.nodeEdge[e];
-            if (!nodeActive(g, w) || !f.labelled(w)) continue;
+            // Both ends must be reached from the same source for one unfolded path.
+            if (!nodeActive(g, w) || !f.labelled(w) || f.label[w].origin != f.label[u].origin) continue;
             for (uint32_t m = g.nodeSecondBegin[w]; m < g.nodeSecondBegin[w + 1]; ++m) {
                 if (g.nodeSecond[m].patch != patchIndex) continue;
                 const float cw = entry(p, g.secondDistances, g.nodeSecond[m].slot, j);
-                const float d = unfoldAcross(du, f.label[w].dist, cu, cw, euclidean(g, g.nodeVertex[u], g.nodeVertex[w]));
+                const float d = crossing(du, f.label[w].dist, cu, cw, euclidean(g, g.nodeVertex[u], g.nodeVertex[w]));
                 if (d < o) o = d;
             }
         }
@@ -88,7 +89,7 @@ extern "C" vg_status vg_distance_field(const vg_graph* graph, vg_workspace* work
     auto key = [](uint32_t, float dv) { return dv; };
     auto none = [](uint32_t, float) {};
     for (size_t i = 0; i < source_count; ++i)
-        if (g.vertexPatch[sources[i]] != kNone) seedEndpoint(g, sources[i], 0.0f, F, key, none);
+        if (g.vertexPatch[sources[i]] != kNone) seedEndpoint(g, sources[i], uint32_t(i), F, key, none);
     while (!F.empty()) {
         const uint32_t u = F.pop().node;
         relaxNode(g, u, F.label[u].dist, everywhere, F, key, none);

@@ -138,6 +138,21 @@ inline float unfoldAcross(float a, float b, float c, float e, float l) {
     return __builtin_sqrtf(dx * dx + dy * dy);
 }
 
+// Unfolding assumes locally flat distance fields; where they are not, it could undercut
+// the true distance. It is trusted to shorten a path through a border node by at most
+// this factor (the searches prune with the same margin, which keeps bounded queries equal
+// to unbounded ones).
+constexpr float kUnfoldSlack = 1.15f;
+
+// The unfolded crossing of edge (u, w), kept within kUnfoldSlack of the better path
+// through u or w; +inf when the straight path misses the edge.
+inline float crossing(float a, float b, float c, float e, float l) {
+    const float d = unfoldAcross(a, b, c, e, l);
+    if (d == __builtin_inff()) return d;
+    const float viaNode = (a + c < b + e ? a + c : b + e) / kUnfoldSlack;
+    return d < viaNode ? viaNode : d;
+}
+
 inline float euclidean(const vg_graph& g, uint32_t a, uint32_t b) {
     const float* pa = g.positions + 3 * uint64_t(a);
     const float* pb = g.positions + 3 * uint64_t(b);

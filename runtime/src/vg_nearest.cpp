@@ -77,7 +77,7 @@ extern "C" vg_status vg_nearest(const vg_graph* graph, vg_workspace* workspace, 
         const Scope scope{ws.detail, gen, false};
         auto key = [](uint32_t, float dv) { return dv; };
         auto none = [](uint32_t, float) {};
-        seedEndpoint(g, source, 0.0f, F, key, none);
+        seedEndpoint(g, source, 0, F, key, none);
         while (!F.empty() && F.topKey() < best.distance) {
             const uint32_t u = F.pop().node;
             const float du = F.label[u].dist;

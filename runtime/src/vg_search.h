@@ -24,8 +24,8 @@ struct Scope {
 // du. keyOf(v, dv) gives v's queue key, +inf to leave v alone (it cannot improve the
 // answer); onImprove(v, dv) runs after v's label dropped to dv.
 template <class KeyOf, class OnImprove>
-inline void relaxSecondRow(const vg_graph& g, uint32_t patch, uint32_t i, float du, Frontier& f, KeyOf&& keyOf,
-                           OnImprove&& onImprove) {
+inline void relaxSecondRow(const vg_graph& g, uint32_t patch, uint32_t i, float du, uint32_t origin, Frontier& f,
+                           KeyOf&& keyOf, OnImprove&& onImprove) {
     const Patch& p = g.second[patch];
     const uint32_t* slots = g.slots + p.slotBegin;
     const uint8_t* packed = g.secondDistances;
@@ -38,7 +38,7 @@ inline void relaxSecondRow(const vg_graph& g, uint32_t patch, uint32_t i, float 
         if (!f.better(v, dv)) return;
         const float key = keyOf(v, dv);
         if (key == __builtin_inff()) return;
-        f.improve(v, dv, key, patch);
+        f.improve(v, dv, key, patch, origin);
         onImprove(v, dv);
     };
     const uint32_t before = i < p.nodeCount ? i : p.nodeCount;  // an endpoint's slot may follow the nodes
@@ -49,8 +49,8 @@ inline void relaxSecondRow(const vg_graph& g, uint32_t patch, uint32_t i, float 
 
 // Relaxes row `i` of first-layer patch `patch` (stored whole, so the row is contiguous).
 template <class KeyOf, class OnImprove>
-inline void relaxFirstRow(const vg_graph& g, uint32_t patch, uint32_t i, float du, Frontier& f, KeyOf&& keyOf,
-                          OnImprove&& onImprove) {
+inline void relaxFirstRow(const vg_graph& g, uint32_t patch, uint32_t i, float du, uint32_t origin, Frontier& f,
+                          KeyOf&& keyOf, OnImprove&& onImprove) {
     const Patch& p = g.first[patch];
     const uint32_t* slots = g.slots + p.slotBegin;
     const uint64_t row = p.matrixBegin + uint64_t(i) * p.slotCount;
@@ -62,7 +62,7 @@ inline void relaxFirstRow(const vg_graph& g, uint32_t patch, uint32_t i, float d
         if (!f.better(v, dv)) continue;
         const float key = keyOf(v, dv);
         if (key == __builtin_inff()) continue;
-        f.improve(v, dv, key, patch | kFirstLayerBit);
+        f.improve(v, dv, key, patch | kFirstLayerBit, origin);
         onImprove(v, dv);
     }
 }
@@ -73,17 +73,17 @@ inline void relaxFirstRow(const vg_graph& g, uint32_t patch, uint32_t i, float d
 template <class KeyOf, class OnImprove>
 inline void relaxNode(const vg_graph& g, uint32_t u, float du, const Scope& scope, Frontier& f, KeyOf&& keyOf,
                       OnImprove&& onImprove) {
-    const uint32_t from = f.label[u].via;
+    const uint32_t from = f.label[u].via, origin = f.label[u].origin;
     for (uint32_t m = g.nodeSecondBegin[u]; m < g.nodeSecondBegin[u + 1]; ++m) {
         const uint32_t patch = g.nodeSecond[m].patch;
         if (patch != from && scope.detailed(g.second[patch].parent))
-            relaxSecondRow(g, patch, g.nodeSecond[m].slot, du, f, keyOf, onImprove);
+            relaxSecondRow(g, patch, g.nodeSecond[m].slot, du, origin, f, keyOf, onImprove);
     }
     if (scope.everywhere) return;
     for (uint32_t m = g.nodeFirstBegin[u]; m < g.nodeFirstBegin[u + 1]; ++m) {
         const uint32_t patch = g.nodeFirst[m].patch;
         if ((patch | kFirstLayerBit) != from && !scope.detailed(patch))
-            relaxFirstRow(g, patch, g.nodeFirst[m].slot, du, f, keyOf, onImprove);
+            relaxFirstRow(g, patch, g.nodeFirst[m].slot, du, origin, f, keyOf, onImprove);
     }
 }
 
@@ -92,21 +92,24 @@ inline void detailAround(const vg_graph& g, uint32_t x, uint32_t* detail, uint32
     forEachPatchOf(g, x, [&](uint32_t patch, uint32_t) { detail[g.second[patch].parent] = generation; });
 }
 
-// Gives the search its start labels for endpoint x at distance `offset`: an active node
-// starts at itself; any other vertex at the active nodes of its patches.
+// Gives the search its start labels for endpoint x (source number `origin`): an active
+// node starts at itself; any other vertex at the active nodes of its patches.
 template <class KeyOf, class OnImprove>
-inline void seedEndpoint(const vg_graph& g, uint32_t x, float offset, Frontier& f, KeyOf&& keyOf,
+inline void seedEndpoint(const vg_graph& g, uint32_t x, uint32_t origin, Frontier& f, KeyOf&& keyOf,
                          OnImprove&& onImprove) {
+    const float offset = 0.0f;
     const uint32_t node = vertexNode(g, x);
     if (node != kNone && nodeActive(g, node)) {
         if (!f.better(node, offset)) return;
         const float key = keyOf(node, offset);
         if (key == __builtin_inff()) return;
-        f.improve(node, offset, key, kNone);
+        f.improve(node, offset, key, kNone, origin);
         onImprove(node, offset);
         return;
     }
-    forEachPatchOf(g, x, [&](uint32_t patch, uint32_t slot) { relaxSecondRow(g, patch, slot, offset, f, keyOf, onImprove); });
+    forEachPatchOf(g, x, [&](uint32_t patch, uint32_t slot) {
+        relaxSecondRow(g, patch, slot, offset, origin, f, keyOf, onImprove);
+    });
 }
 
 }  // namespace vg

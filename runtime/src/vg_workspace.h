@@ -20,12 +20,13 @@ struct HeapEntry {
     uint32_t node;
 };
 
-// A node's label in one search direction (one cache line holds four).
+// A node's label in one search direction.
 struct Label {
     float dist;
     uint32_t stamp;    // == generation when the label belongs to the current query
     uint32_t via;      // patch whose row gave the label (first layer: | kFirstLayerBit)
     uint32_t heapPos;  // kNone when not in the heap
+    uint32_t origin;   // which source the label comes from (multi-source fields)
 };
 
 // One search direction: tentative distances and the queue of open nodes.
@@ -41,14 +42,15 @@ struct Frontier {
     bool empty() const { return size == 0; }
     float topKey() const { return size ? heap[0].key : __builtin_inff(); }
 
-    // Sets u's label to d (queue key `key`), reached through the row of patch `from`;
-    // the caller checked better(u, d).
-    void improve(uint32_t u, float d, float key, uint32_t from) {
+    // Sets u's label to d (queue key `key`), reached through the row of patch `from`
+    // from source `origin`; the caller checked better(u, d).
+    void improve(uint32_t u, float d, float key, uint32_t from, uint32_t origin) {
         Label& l = label[u];
         const bool queued = l.stamp == generation && l.heapPos != kNone;
         l.stamp = generation;
         l.dist = d;
         l.via = from;
+        l.origin = origin;
         siftUp(queued ? l.heapPos : size++, HeapEntry{key, u});  // decrease, or (re)open
     }
 

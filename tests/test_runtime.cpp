@@ -1,0 +1,437 @@
+// The runtime (runtime/, C API) on blobs baked from generated meshes, and on the shared
+// meshes against golden distances when ../shared is present.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <thread>
+
+#include "bake.h"
+#include "blob_writer.h"
+#include "generators.h"
+#include "geodesic_exact.h"
+#include "golden.h"
+#include "mesh_io.h"
+#include "runtime_graph.h"
+#include "runtime_stats.h"
+#include "test_helpers.h"
+#include "vorogeo.h"
+#include "vorogeo_container.h"
+
+using namespace vorogeo;
+using tools::RuntimeGraph;
+using tools::RuntimeWorkspace;
+
+namespace {
+
+std::vector<uint8_t> bakeBlob(const Mesh& mesh, bool compress = true, uint32_t n2 = 0) {
+    BakeOptions o;
+    o.compress = compress;
+    o.n2 = n2;
+    BakeReport report;
+    return bakeMesh(mesh, o, report, nullptr);
+}
+
+// One baked blob per generated mesh, shared by the test cases of one process.
+const std::vector<uint8_t>& bumpyBlob() {
+    static const std::vector<uint8_t> blob = bakeBlob(bumpyTorus(60, 30));  // 1,800 vertices
+    return blob;
+}
+
+RuntimeGraph openOrFail(const std::vector<uint8_t>& blob) {
+    RuntimeGraph g;
+    std::string error;
+    REQUIRE(g.open(blob, error));
+    return g;
+}
+
+// Recomputes the container checksum after the payload was edited on purpose.
+void resealChecksum(std::vector<uint8_t>& blob) {
+    vg_store_le64(blob.data() + 32, vg_checksum64(blob.data() + VG_CONTAINER_HEADER_SIZE,
+                                                  blob.size() - VG_CONTAINER_HEADER_SIZE));
+}
+
+// Opens a possibly corrupt blob; if accepted, runs every query kind on a few vertices.
+// Returns whether it was accepted. Must never crash or read out of bounds.
+bool openAndQuery(const std::vector<uint8_t>& blob) {
+    tools::AlignedBytes copy, memory, wsMemory;
+    copy.resize(blob.size());
+    if (!blob.empty()) std::memcpy(copy.data(), blob.data(), blob.size());
+    size_t need = 0;
+    if (vg_open_size(copy.data(), blob.size(), &need) != VG_OK) return false;
+    memory.resize(need);
+    const vg_graph* g = nullptr;
+    if (vg_open(copy.data(), blob.size(), memory.data(), need, &g) != VG_OK) {
+        REQUIRE(g == nullptr);
+        return false;
+    }
+    const size_t wsBytes = vg_workspace_size(g);
+    wsMemory.resize(wsBytes);
+    vg_workspace* ws = nullptr;
+    REQUIRE(vg_workspace_init(g, wsMemory.data(), wsBytes, &ws) == VG_OK);
+    const uint32_t V = vg_vertex_count(g);
+    float d = 0;
+    std::vector<float> field(V);
+    const uint32_t picks[3] = {0, V / 2, V - 1};
+    for (uint32_t a : picks)
+        for (uint32_t b : picks) REQUIRE(vg_distance(g, ws, a, b, &d) == VG_OK);
+    REQUIRE(vg_distance_field(g, ws, picks, 3, field.data()) == VG_OK);
+    size_t index = 0;
+    REQUIRE(vg_nearest(g, ws, picks[0], picks + 1, 2, &index, &d) == VG_OK);
+    return true;
+}
+
+}  // namespace
+
+TEST_CASE("runtime: opens a baked blob, compressed or in place, and reports its size", "[runtime]") {
+    const Mesh mesh = bumpyTorus(60, 30);
+    RuntimeGraph g = openOrFail(bumpyBlob());
+    CHECK(vg_vertex_count(g.graph()) == mesh.vertexCount());
+    CHECK(vg_node_count(g.graph()) > 0);
+    CHECK(vg_bbox_diagonal(g.graph()) > 0);
+    CHECK(vg_supports_compression() == 1);
+
+    // Uncompressed: the graph points into the caller's blob (zero copy) and needs only the handle.
+    const std::vector<uint8_t> raw = bakeBlob(mesh, false);
+    tools::AlignedBytes copy;
+    copy.resize(raw.size());
+    std::memcpy(copy.data(), raw.data(), raw.size());
+    size_t need = 0;
+    REQUIRE(vg_open_size(copy.data(), raw.size(), &need) == VG_OK);
+    CHECK(need < 1024);
+    std::vector<unsigned char> memory(need);
+    const vg_graph* graph = nullptr;
+    REQUIRE(vg_open(copy.data(), raw.size(), memory.data(), need, &graph) == VG_OK);
+    RuntimeGraph compressed = openOrFail(bumpyBlob());
+    RuntimeWorkspace a(compressed);
+    std::vector<unsigned char> wsMemory(vg_workspace_size(graph));
+    vg_workspace* ws = nullptr;
+    REQUIRE(vg_workspace_init(graph, wsMemory.data(), wsMemory.size(), &ws) == VG_OK);
+    float d = 0;
+    REQUIRE(vg_distance(graph, ws, 3, 1500, &d) == VG_OK);
+    CHECK(d == a.distance(3, 1500));
+
+    // Too little memory is an error, not an overrun.
+    CHECK(vg_open(copy.data(), raw.size(), memory.data(), need - 1, &graph) == VG_ERR_BUFFER_TOO_SMALL);
+    CHECK(graph == nullptr);
+}
+
+TEST_CASE("runtime: vg_open_file maps or decompresses with the caller's allocator", "[runtime]") {
+    test::TempDir dir;
+    const std::vector<uint8_t> raw = bakeBlob(bumpyTorus(60, 30), false);
+    for (const auto* blob : {&bumpyBlob(), &raw}) {
+        const std::string path = dir.file("b.vgeo");
+        writeFileAtomically(path, *blob);
+        struct Counter {
+            int live = 0;
+        } counter;
+        vg_allocator alloc{[](void* user, size_t n) {
+                               ++static_cast<Counter*>(user)->live;
+                               return std::malloc(n);
+                           },
+                           [](void* user, void* p) {
+                               --static_cast<Counter*>(user)->live;
+                               std::free(p);
+                           },
+                           &counter};
+        const vg_graph* g = nullptr;
+        REQUIRE(vg_open_file(path.c_str(), &alloc, &g) == VG_OK);
+        CHECK(counter.live == 1);  // the handle's memory only; file bytes are mapped
+        RuntimeGraph ref = openOrFail(*blob);
+        RuntimeWorkspace refWs(ref);
+        std::vector<unsigned char> wsMemory(vg_workspace_size(g));
+        vg_workspace* ws = nullptr;
+        REQUIRE(vg_workspace_init(g, wsMemory.data(), wsMemory.size(), &ws) == VG_OK);
+        float d = 0;
+        REQUIRE(vg_distance(g, ws, 10, 900, &d) == VG_OK);
+        CHECK(d == refWs.distance(10, 900));
+        vg_close_file(g);
+        CHECK(counter.live == 0);
+    }
+    const vg_graph* g = nullptr;
+    vg_allocator alloc{[](void*, size_t n) { return std::malloc(n); }, [](void*, void* p) { std::free(p); }, nullptr};
+    CHECK(vg_open_file(dir.file("missing.vgeo").c_str(), &alloc, &g) == VG_ERR_IO);
+    CHECK(vg_open_file(dir.file("missing.vgeo").c_str(), nullptr, &g) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(g == nullptr);
+}
+
+TEST_CASE("runtime: point-to-point agrees with one-to-all, is symmetric and close to exact", "[runtime]") {
+    const Mesh mesh = bumpyTorus(60, 30);
+    RuntimeGraph g = openOrFail(bumpyBlob());
+    RuntimeWorkspace ws(g);
+    ExactGeodesic exact(mesh);
+    ExactWorkspace ews;
+    std::mt19937 rng(7);
+    std::uniform_int_distribution<uint32_t> pick(0, mesh.vertexCount() - 1);
+    double sumRel = 0, maxRel = 0, maxP2pField = 0;
+    size_t n = 0;
+    for (int s = 0; s < 8; ++s) {
+        const uint32_t source = pick(rng);
+        const std::vector<float> field = ws.field({source});
+        std::vector<double> ex;
+        ExactQuery q;
+        q.sources.push_back(GeodesicSource::atVertex(source));
+        ews.run(exact, q, ex);
+        CHECK(field[source] == 0.0f);
+        for (int t = 0; t < 40; ++t) {
+            const uint32_t target = pick(rng);
+            const float d = ws.distance(source, target);
+            CHECK(d == ws.distance(target, source));  // the same number both ways
+            if (source == target) {
+                CHECK(d == 0.0f);
+                continue;
+            }
+            // Both answers are the same graph distance, up to where the unfolded border
+            // crossing is taken (the field: at the target's patch; point-to-point: where
+            // the searches meet) and the 12-bit rounding of the first-layer overlay.
+            maxP2pField = std::max(maxP2pField, std::fabs(double(d) - field[target]) / ex[target]);
+            const double rel = std::fabs(double(d) - ex[target]) / ex[target];
+            sumRel += rel;
+            maxRel = std::max(maxRel, rel);
+            ++n;
+        }
+    }
+    INFO("mean " << sumRel / n << " max " << maxRel << " p2p vs field " << maxP2pField);
+    CHECK(maxP2pField <= 0.02);
+    CHECK(sumRel / n <= 0.005);
+    CHECK(maxRel <= 0.05);
+}
+
+TEST_CASE("runtime: the triangle inequality holds up to rounding on random triples", "[runtime]") {
+    RuntimeGraph g = openOrFail(bumpyBlob());
+    RuntimeWorkspace ws(g);
+    const tools::MetricReport m = tools::checkMetric(ws, g.vertexCount(), 400, 3);
+    CHECK(m.symmetryViolations == 0);
+    CHECK(m.triples == 400);
+    // Unfolded crossings can undercut a path through a node by a hair; never more than
+    // a thousandth of the bounding-box diagonal.
+    CHECK(m.maxTriangleExcess <= 1e-3 * vg_bbox_diagonal(g.graph()));
+}
+
+TEST_CASE("runtime: bounded queries, nearest of a set and multi-source fields agree", "[runtime]") {
+    RuntimeGraph g = openOrFail(bumpyBlob());
+    RuntimeWorkspace ws(g);
+    const vg_graph* graph = g.graph();
+    const uint32_t V = g.vertexCount();
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<uint32_t> pick(0, V - 1);
+    for (int i = 0; i < 50; ++i) {
+        const uint32_t s = pick(rng), t = pick(rng);
+        const float d = ws.distance(s, t);
+        float within = -1;
+        REQUIRE(vg_distance_within(graph, ws.get(), s, t, d, &within) == VG_OK);
+        CHECK(within == d);
+        REQUIRE(vg_distance_within(graph, ws.get(), s, t, d * 0.99f, &within) == VG_OK);
+        CHECK((d == 0 || std::isinf(within)));
+    }
+    // Nearest of 12 targets = the smallest point-to-point distance, first index on ties.
+    for (int i = 0; i < 20; ++i) {
+        const uint32_t s = pick(rng);
+        std::vector<uint32_t> targets;
+        for (int k = 0; k < 12; ++k) targets.push_back(pick(rng));
+        targets.push_back(targets[3]);  // a duplicate never wins over its first listing
+        size_t index = 99;
+        float d = -1;
+        REQUIRE(vg_nearest(graph, ws.get(), s, targets.data(), targets.size(), &index, &d) == VG_OK);
+        float best = INFINITY;
+        for (uint32_t t : targets) best = std::min(best, ws.distance(s, t));
+        REQUIRE(index < 12);
+        // Nearest offers stored entries from settled nodes; point-to-point may also
+        // unfold a border crossing, which shortens a path by at most 5%.
+        CHECK(d >= best * 0.9999f);
+        CHECK(d <= best * 1.05f + 1e-6f);
+    }
+    size_t index = 0;
+    float d = 0;
+    REQUIRE(vg_nearest(graph, ws.get(), 5, nullptr, 0, &index, &d) == VG_OK);
+    CHECK(index == 0);
+    CHECK(std::isinf(d));
+    // A multi-source field is the pointwise minimum of the single-source fields (nodes
+    // exactly; other vertices up to which source's border crossing is unfolded).
+    const std::vector<uint32_t> sources = {17, 900, 1400};
+    const std::vector<float> multi = ws.field(sources);
+    std::vector<float> minimum(V, INFINITY);
+    for (uint32_t s : sources) {
+        const std::vector<float> one = ws.field({s});
+        for (uint32_t v = 0; v < V; ++v) minimum[v] = std::min(minimum[v], one[v]);
+    }
+    for (uint32_t v = 0; v < V; ++v) REQUIRE(std::fabs(multi[v] - minimum[v]) <= 0.02f * minimum[v]);
+}
+
+TEST_CASE("runtime: vertices of different components are at +infinity in every query", "[runtime]") {
+    const Mesh mesh = twoComponents();
+    RuntimeGraph g = openOrFail(bakeBlob(mesh));
+    RuntimeWorkspace ws(g);
+    const vg_graph* graph = g.graph();
+    // Label the components by one field: finite = same component as vertex 0.
+    const std::vector<float> field = ws.field({0});
+    uint32_t other = UINT32_MAX, same = UINT32_MAX;
+    for (uint32_t v = 1; v < mesh.vertexCount(); ++v) {
+        if (std::isinf(field[v]) && other == UINT32_MAX) other = v;
+        if (std::isfinite(field[v]) && same == UINT32_MAX) same = v;
+    }
+    REQUIRE(other != UINT32_MAX);
+    REQUIRE(same != UINT32_MAX);
+    CHECK(std::isinf(ws.distance(0, other)));
+    CHECK(std::isinf(ws.distance(other, 0)));
+    CHECK(std::isfinite(ws.distance(0, same)));
+    CHECK(ws.distance(0, same) > 0);
+    float d = 0;
+    REQUIRE(vg_distance_within(graph, ws.get(), 0, other, 1e30f, &d) == VG_OK);
+    CHECK(std::isinf(d));
+    size_t index = 0;
+    const uint32_t targets[1] = {other};
+    REQUIRE(vg_nearest(graph, ws.get(), 0, targets, 1, &index, &d) == VG_OK);
+    CHECK(index == 1);
+    CHECK(std::isinf(d));
+    const uint32_t both[2] = {other, same};
+    REQUIRE(vg_nearest(graph, ws.get(), 0, both, 2, &index, &d) == VG_OK);
+    CHECK(index == 1);
+    CHECK(std::isfinite(d));
+}
+
+TEST_CASE("runtime: arguments are checked and named by status codes", "[runtime]") {
+    RuntimeGraph g = openOrFail(bumpyBlob());
+    RuntimeWorkspace ws(g);
+    const vg_graph* graph = g.graph();
+    const uint32_t V = g.vertexCount();
+    float d = 0;
+    CHECK(vg_distance(graph, ws.get(), 0, V, &d) == VG_ERR_INVALID_VERTEX);
+    CHECK(vg_distance(graph, ws.get(), V, 0, &d) == VG_ERR_INVALID_VERTEX);
+    CHECK(vg_distance(nullptr, ws.get(), 0, 1, &d) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(vg_distance(graph, nullptr, 0, 1, &d) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(vg_distance(graph, ws.get(), 0, 1, nullptr) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(vg_distance_within(graph, ws.get(), 0, 1, NAN, &d) == VG_ERR_INVALID_ARGUMENT);
+    const uint32_t bad[2] = {0, V + 5};
+    std::vector<float> field(V);
+    CHECK(vg_distance_field(graph, ws.get(), bad, 2, field.data()) == VG_ERR_INVALID_VERTEX);
+    size_t index = 0;
+    CHECK(vg_nearest(graph, ws.get(), 0, bad, 2, &index, &d) == VG_ERR_INVALID_VERTEX);
+    // A workspace made for another graph is refused.
+    RuntimeGraph other = openOrFail(bakeBlob(planeGrid(12, 12, 1.0)));
+    RuntimeWorkspace otherWs(other);
+    CHECK(vg_distance(graph, otherWs.get(), 0, 1, &d) == VG_ERR_WRONG_WORKSPACE);
+    // Workspace memory too small.
+    std::vector<unsigned char> small(16);
+    vg_workspace* w = nullptr;
+    CHECK(vg_workspace_init(graph, small.data(), small.size(), &w) == VG_ERR_BUFFER_TOO_SMALL);
+    CHECK(w == nullptr);
+    for (int s = 0; s <= 14; ++s) CHECK(std::string(vg_status_string(vg_status(s))) != "unknown status");
+    CHECK(std::string(vg_status_string(vg_status(99))) == "unknown status");
+}
+
+TEST_CASE("runtime: many threads on one graph give the same bits as one thread", "[runtime]") {
+    RuntimeGraph g = openOrFail(bumpyBlob());
+    const uint32_t V = g.vertexCount();
+    std::vector<std::pair<uint32_t, uint32_t>> pairs;
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<uint32_t> pick(0, V - 1);
+    for (int i = 0; i < 400; ++i) pairs.emplace_back(pick(rng), pick(rng));
+    auto answer = [&](std::vector<float>& out) {
+        RuntimeWorkspace ws(g);
+        for (const auto& p : pairs) out.push_back(ws.distance(p.first, p.second));
+        const std::vector<float> f = ws.field({pairs[0].first, pairs[1].first});
+        out.insert(out.end(), f.begin(), f.end());
+    };
+    std::vector<float> reference;
+    answer(reference);
+    std::vector<std::vector<float>> results(4);
+    std::vector<std::thread> threads;
+    for (auto& r : results) threads.emplace_back([&answer, &r] { answer(r); });
+    for (auto& t : threads) t.join();
+    for (const auto& r : results) {
+        REQUIRE(r.size() == reference.size());
+        CHECK(std::memcmp(r.data(), reference.data(), r.size() * sizeof(float)) == 0);
+    }
+}
+
+TEST_CASE("runtime: every truncation and every flipped byte of a blob is rejected", "[runtime]") {
+    const std::vector<uint8_t> blob = bakeBlob(planeGrid(10, 10, 1.0), true, 4);
+    REQUIRE(openAndQuery(blob));
+    for (size_t n = 0; n < blob.size(); ++n) {
+        const std::vector<uint8_t> cut(blob.begin(), blob.begin() + n);
+        REQUIRE_FALSE(openAndQuery(cut));
+    }
+    for (size_t i = 0; i < blob.size(); ++i) {
+        std::vector<uint8_t> flipped = blob;
+        flipped[i] ^= 0x5A;
+        REQUIRE_FALSE(openAndQuery(flipped));
+    }
+    std::vector<uint8_t> longer = blob;
+    longer.push_back(0);
+    CHECK_FALSE(openAndQuery(longer));
+}
+
+TEST_CASE("runtime: corrupt flatbuffers with a valid checksum are refused or answered safely", "[runtime]") {
+    // The checksum catches accidents; this reaches the verifier and the index checks, the
+    // way a crafted blob would. Every byte of an uncompressed flatbuffer is changed in
+    // turn (then the checksum is made to match again).
+    const std::vector<uint8_t> blob = bakeBlob(planeGrid(10, 10, 1.0), false, 4);
+    REQUIRE(openAndQuery(blob));
+    size_t accepted = 0, rejected = 0;
+    for (size_t i = VG_CONTAINER_HEADER_SIZE; i < blob.size(); ++i) {
+        for (uint8_t mask : {uint8_t(0x01), uint8_t(0x80), uint8_t(0xFF)}) {
+            std::vector<uint8_t> bad = blob;
+            bad[i] ^= mask;
+            resealChecksum(bad);
+            (openAndQuery(bad) ? accepted : rejected)++;
+        }
+    }
+    INFO("accepted " << accepted << " rejected " << rejected);
+    CHECK(rejected > 0);
+    CHECK(accepted > 0);  // distances and positions may change without breaking any index
+}
+
+TEST_CASE("runtime: accuracy against the golden pairs of the shared meshes", "[runtime][shared]") {
+    const std::string dir = test::sharedMeshDir();
+    if (dir.empty()) {
+        WARN("skipped: ../shared/meshes is absent, golden accuracy not checked");
+        return;
+    }
+    // spot: a coarse mesh (2,930 vertices, long edges) is the hardest case for the graph.
+    struct Case {
+        const char* mesh;
+        double maxMean, maxMax;
+    };
+    for (const Case& c : {Case{"spot", 0.002, 0.05}, Case{"fandisk", 0.002, 0.05}}) {
+        Mesh mesh;
+        LoadOptions lo;
+        loadMesh(dir + "/" + c.mesh + ".ply", lo, mesh);
+        RuntimeGraph g = openOrFail(bakeBlob(mesh));
+        RuntimeWorkspace ws(g);
+        std::vector<tools::DistancePair> pairs;
+        std::string error;
+        REQUIRE(tools::readPairs(dir + "/../golden/" + c.mesh + ".pairs.csv", pairs, error));
+        const tools::AccuracyReport r = tools::measureAccuracy(ws, pairs);
+        INFO(c.mesh << ": mean " << r.meanRel << " max " << r.maxRel);
+        CHECK(r.pairs > 9000);
+        CHECK(r.infiniteMismatches == 0);
+        CHECK(r.meanRel <= c.maxMean);
+        CHECK(r.maxRel <= c.maxMax);
+    }
+}
+
+TEST_CASE("runtime: error statistics on answers known in advance", "[runtime][eval]") {
+    std::vector<tools::DistancePair> pairs;
+    std::vector<double> values;
+    for (uint32_t i = 0; i < 100; ++i) {
+        pairs.push_back({i, i + 1, 1.0});
+        values.push_back(1.0004 + 0.001 * i);  // relative errors 0.0004, 0.0014, ..., 0.0994
+    }
+    pairs.push_back({7, 8, INFINITY});
+    values.push_back(INFINITY);  // agreeing infinities are not pairs
+    pairs.push_back({8, 9, 2.0});
+    values.push_back(INFINITY);  // a reachability mismatch
+    const tools::AccuracyReport r = tools::errorStatistics(pairs, values);
+    CHECK(r.pairs == 100);
+    CHECK(r.infiniteMismatches == 1);
+    CHECK(std::fabs(r.meanRel - 0.0499) < 1e-9);
+    CHECK(std::fabs(r.maxRel - 0.0994) < 1e-9);
+    CHECK(std::fabs(r.p99Rel - 0.0984) < 1e-9);   // nearest rank 99 of 100
+    CHECK(std::fabs(r.medianRel - 0.0494) < 1e-9);
+    CHECK(r.overOnePercent == 90);
+    REQUIRE(r.worst.size() == 5);
+    CHECK(r.worst[0].source == 99);
+}

@@ -45,13 +45,15 @@ TEST_CASE("vorogeo info usage errors exit 2", "[cli]") {
     CHECK(test::runTool("info --help").status == 0);
 }
 
-TEST_CASE("vorogeo demo runs every step and writes the mesh", "[cli][demo]") {
+TEST_CASE("vorogeo demo runs every step and writes the mesh and the blob", "[cli][demo]") {
     test::TempDir dir;
     const test::ToolResult r = test::runTool("demo --out " + test::quote(dir.file("out")));
     INFO(r.out << r.err);
     REQUIRE(r.status == 0);
     CHECK_THAT(r.out, Catch::Contains("28800 vertices") && Catch::Contains("genus") && Catch::Contains("[6/6]"));
+    CHECK_THAT(r.out, Catch::Contains("point-to-point from vertex 0") && Catch::Contains("one-to-all"));
     CHECK(std::filesystem::exists(dir.file("out/bumpy-torus.ply")));
+    CHECK(std::filesystem::exists(dir.file("out/bumpy-torus.vgeo")));
     Mesh m;
     CHECK(loadMesh(dir.file("out/bumpy-torus.ply"), LoadOptions{}, m).ok);
     CHECK(test::runTool("demo extra").status == 2);

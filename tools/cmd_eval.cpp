@@ -23,7 +23,8 @@ const char* kUsage =
     "  golden 'source,target,distance' file, or from the exact engine on N random pairs\n"
     "  (default 1000, drawn from N/100 sources). Reports mean, median, p99 and max relative\n"
     "  error, the worst pairs, symmetry and triangle-inequality violations (on --triples\n"
-    "  random triples, default 2000) and the query time (p50, p90, p99 in microseconds).\n";
+    "  random triples, default 2000), the query time (p50, p90, p99 in microseconds) and the\n"
+    "  one-to-all time (median over up to 20 sources of the pairs).\n";
 
 // Random pairs, a hundred targets per source, with exact distances from the exact engine.
 std::vector<DistancePair> exactRandomPairs(const Mesh& mesh, size_t count, uint64_t seed) {
@@ -93,18 +94,30 @@ int runEval(int argc, char** argv) {
     RuntimeWorkspace ws(graph);
     const AccuracyReport acc = measureAccuracy(ws, pairs);
     const MetricReport metric = checkMetric(ws, mesh.vertexCount(), size_t(triples), seed);
+    // One-to-all from the first sources of the pairs (at most 20 distinct).
+    std::vector<double> fieldMs;
+    std::vector<uint32_t> fieldSources;
+    for (const DistancePair& p : pairs)
+        if (fieldSources.size() < 20 && std::find(fieldSources.begin(), fieldSources.end(), p.source) == fieldSources.end())
+            fieldSources.push_back(p.source);
+    for (uint32_t s : fieldSources) {
+        Stopwatch watch;
+        ws.field({s});
+        fieldMs.push_back(watch.seconds() * 1e3);
+    }
+    const double msadP50 = percentile(fieldMs, 50);
     const double bboxDiag = double(vg_bbox_diagonal(graph.graph()));
 
     if (args.flag("--json")) {
         std::printf("{\"mesh\":\"%s\",\"vertices\":%u,\"blob_bytes\":%zu,\"open_ms\":%.3f,\"pairs\":%zu,"
                     "\"mean_rel_error\":%.6e,\"median_rel_error\":%.6e,\"p99_rel_error\":%.6e,\"max_rel_error\":%.6e,"
                     "\"pairs_over_1pct\":%zu,\"infinite_mismatches\":%zu,"
-                    "\"sssd_p50_us\":%.2f,\"sssd_p90_us\":%.2f,\"sssd_p99_us\":%.2f,"
+                    "\"sssd_p50_us\":%.2f,\"sssd_p90_us\":%.2f,\"sssd_p99_us\":%.2f,\"msad_p50_ms\":%.3f,"
                     "\"symmetry_pairs\":%zu,\"symmetry_violations\":%zu,\"max_symmetry_rel\":%.3e,"
                     "\"triples\":%zu,\"triangle_violations\":%zu,\"max_triangle_excess\":%.3e}\n",
                     args.positional()[0].c_str(), mesh.vertexCount(), graph.blobBytes(), graph.openSeconds() * 1e3,
                     acc.pairs, acc.meanRel, acc.medianRel, acc.p99Rel, acc.maxRel, acc.overOnePercent,
-                    acc.infiniteMismatches, acc.p50Us, acc.p90Us, acc.p99Us, metric.symmetryPairs,
+                    acc.infiniteMismatches, acc.p50Us, acc.p90Us, acc.p99Us, msadP50, metric.symmetryPairs,
                     metric.symmetryViolations, metric.maxSymmetryRel, metric.triples, metric.triangleViolations,
                     metric.maxTriangleExcess / bboxDiag);
         return 0;
@@ -121,6 +134,7 @@ int runEval(int argc, char** argv) {
     for (const PairError& w : acc.worst)
         std::printf("  %u %u %.6g %.6g %.4f%%\n", w.source, w.target, w.exact, w.value, w.rel * 100);
     std::printf("point-to-point: p50 %.1f us, p90 %.1f us, p99 %.1f us\n", acc.p50Us, acc.p90Us, acc.p99Us);
+    std::printf("one-to-all: p50 %.2f ms (%zu sources)\n", msadP50, fieldMs.size());
     std::printf("symmetry: %zu of %zu pairs differ (max %.2e relative)\n", metric.symmetryViolations,
                 metric.symmetryPairs, metric.maxSymmetryRel);
     std::printf("triangle inequality: %zu of %zu triples violated (max excess %.2e of the bbox diagonal)\n",

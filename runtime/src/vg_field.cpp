@@ -10,6 +10,57 @@ namespace {
 
 using namespace vg;
 
+// The path to an interior vertex may cross the border on an edge next to its best node
+// rather than at the node. The source side of each such edge (its unfolded source point)
+// is the same for every vertex of the patch, so it is computed once per edge here.
+void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_workspace& ws,
+                       uint32_t reached, float* out) {
+    const Patch& p = g.second[patchIndex];
+    const uint32_t* slots = g.slots + p.slotBegin;
+    CrossingEdge* edges = ws.patchEdges;
+    uint32_t* begin = ws.patchEdgeBegin;
+    uint32_t count = 0;
+    for (uint32_t r = 0; r < reached; ++r) {
+        begin[r] = count;
+        const uint32_t u = slots[ws.patchNodeSlot[r]];
+        const float a = ws.patchNodeDistance[r];
+        for (uint32_t e = g.nodeEdgeBegin[u]; e < g.nodeEdgeBegin[u + 1] && count < kMaxPatchEdges; ++e) {
+            const uint32_t w = g.nodeEdge[e];
+            // Both ends must be reached from the same source for one unfolded path.
+            if (!nodeActive(g, w) || !f.labelled(w) || f.route[w].origin != f.route[u].origin) continue;
+            for (uint32_t m = g.nodeSecondBegin[w]; m < g.nodeSecondBegin[w + 1]; ++m) {
+                if (g.nodeSecond[m].patch != patchIndex) continue;
+                const float b = f.label[w].dist, l = euclidean(g, g.nodeVertex[u], g.nodeVertex[w]);
+                if (!(l > 0.0f)) continue;
+                const float xs = (a * a - b * b + l * l) * (0.5f / l), ys2 = a * a - xs * xs;
+                if (!(ys2 > 0.0f)) continue;
+                edges[count++] = CrossingEdge{g.nodeSecond[m].slot, l, xs, __builtin_sqrtf(ys2), b};
+            }
+        }
+    }
+    begin[reached] = count;
+    for (uint32_t j = p.nodeCount; j < p.slotCount; ++j) {
+        const uint32_t r = ws.patchBestNode[j];
+        if (r == kNone) continue;
+        const float a = ws.patchNodeDistance[r], c = entry(p, g.secondDistances, ws.patchNodeSlot[r], j);
+        float& o = out[slots[j]];
+        for (uint32_t k = begin[r]; k < begin[r + 1]; ++k) {
+            const CrossingEdge& E = edges[k];
+            const float e = entry(p, g.secondDistances, E.slot, j);
+            const float xt = (c * c - e * e + E.length * E.length) * (0.5f / E.length), yt2 = c * c - xt * xt;
+            if (!(yt2 > 0.0f)) continue;
+            const float yt = __builtin_sqrtf(yt2);
+            const float x = E.xs + (xt - E.xs) * (E.ys / (E.ys + yt));
+            if (!(x > 0.0f && x < E.length)) continue;
+            const float dx = xt - E.xs, dy = yt + E.ys;
+            float d = __builtin_sqrtf(dx * dx + dy * dy);
+            const float viaNode = (a + c < E.b + e ? a + c : E.b + e) / kUnfoldSlack;  // as crossing()
+            if (d < viaNode) d = viaNode;
+            if (d < o) o = d;
+        }
+    }
+}
+
 // Vertices of one patch that are not active nodes: best over its settled active nodes.
 void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_workspace& ws, float* out) {
     const Patch& p = g.second[patchIndex];
@@ -18,7 +69,9 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
     uint32_t reached = 0;
     for (uint32_t i = 0; i < p.nodeCount; ++i) {
         const uint32_t n = slots[i];
-        if (nodeActive(g, n) && f.labelled(n)) {
+        // A node labelled through this patch's own row is no better start than the node
+        // it came from (patch distances obey the triangle inequality): skip it.
+        if (nodeActive(g, n) && f.labelled(n) && f.route[n].via != patchIndex) {
             ws.patchNodeSlot[reached] = i;
             ws.patchNodeDistance[reached] = f.label[n].dist;
             ++reached;
@@ -47,25 +100,7 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
             }
         }
     }
-    // The path may cross the border on an edge next to the best node rather than at it.
-    for (uint32_t j = p.nodeCount; j < p.slotCount; ++j) {
-        const uint32_t r = ws.patchBestNode[j];
-        if (r == kNone) continue;
-        const uint32_t i = ws.patchNodeSlot[r], u = slots[i];
-        const float du = ws.patchNodeDistance[r], cu = entry(p, g.secondDistances, i, j);
-        float& o = out[slots[j]];
-        for (uint32_t e = g.nodeEdgeBegin[u]; e < g.nodeEdgeBegin[u + 1]; ++e) {
-            const uint32_t w = g.nodeEdge[e];
-            // Both ends must be reached from the same source for one unfolded path.
-            if (!nodeActive(g, w) || !f.labelled(w) || f.label[w].origin != f.label[u].origin) continue;
-            for (uint32_t m = g.nodeSecondBegin[w]; m < g.nodeSecondBegin[w + 1]; ++m) {
-                if (g.nodeSecond[m].patch != patchIndex) continue;
-                const float cw = entry(p, g.secondDistances, g.nodeSecond[m].slot, j);
-                const float d = crossing(du, f.label[w].dist, cu, cw, euclidean(g, g.nodeVertex[u], g.nodeVertex[w]));
-                if (d < o) o = d;
-            }
-        }
-    }
+    unfoldAtBestNodes(g, patchIndex, f, ws, reached, out);
 }
 
 }  // namespace

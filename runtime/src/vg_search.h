@@ -73,7 +73,7 @@ inline void relaxFirstRow(const vg_graph& g, uint32_t patch, uint32_t i, float d
 template <class KeyOf, class OnImprove>
 inline void relaxNode(const vg_graph& g, uint32_t u, float du, const Scope& scope, Frontier& f, KeyOf&& keyOf,
                       OnImprove&& onImprove) {
-    const uint32_t from = f.label[u].via, origin = f.label[u].origin;
+    const uint32_t from = f.route[u].via, origin = f.route[u].origin;
     for (uint32_t m = g.nodeSecondBegin[u]; m < g.nodeSecondBegin[u + 1]; ++m) {
         const uint32_t patch = g.nodeSecond[m].patch;
         if (patch != from && scope.detailed(g.second[patch].parent))

@@ -30,6 +30,7 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     vg::Frontier* const frontiers[2] = {&o.forward, &o.backward};
     for (vg::Frontier* f : frontiers) {
         f->label = L.take<vg::Label>(N);
+        f->route = L.take<vg::Route>(N);
         f->heap = L.take<vg::HeapEntry>(N);
         f->size = 0;
         f->generation = 0;
@@ -45,6 +46,8 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.patchNodeDistance = L.take<float>(kMaxPatchSlots);
     o.patchNodeSlot = L.take<uint32_t>(kMaxPatchSlots);
     o.patchBestNode = L.take<uint32_t>(kMaxPatchSlots);
+    o.patchEdgeBegin = L.take<uint32_t>(kMaxPatchSlots + 1);
+    o.patchEdges = L.take<vg::CrossingEdge>(vg::kMaxPatchEdges);
     o.graph = &g;
     o.generation = 0;
 }

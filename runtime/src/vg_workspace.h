@@ -10,6 +10,15 @@ namespace vg {
 
 constexpr uint32_t kFirstLayerBit = 0x80000000u;
 
+constexpr uint32_t kMaxPatchEdges = 4096;  // border edges unfolded per patch (more are skipped)
+
+// A border edge of the patch being filled, from a reached node to a neighbour node:
+// the neighbour's slot, the edge length and the unfolded source point (xs, -ys).
+struct CrossingEdge {
+    uint32_t slot;
+    float length, xs, ys, b;
+};
+
 struct Potential {
     float value;
     uint32_t stamp;
@@ -20,10 +29,14 @@ struct HeapEntry {
     uint32_t node;
 };
 
-// A node's label in one search direction.
+// A node's label in one search direction: what every relaxation reads (kept small so
+// that more of them stay in cache) ...
 struct Label {
     float dist;
     uint32_t stamp;    // == generation when the label belongs to the current query
+};
+// ... and what only a label change needs.
+struct Route {
     uint32_t via;      // patch whose row gave the label (first layer: | kFirstLayerBit)
     uint32_t heapPos;  // kNone when not in the heap
     uint32_t origin;   // which source the label comes from (multi-source fields)
@@ -32,6 +45,7 @@ struct Label {
 // One search direction: tentative distances and the queue of open nodes.
 struct Frontier {
     Label* label;
+    Route* route;
     HeapEntry* heap;
     uint32_t size;
     uint32_t generation;
@@ -46,17 +60,18 @@ struct Frontier {
     // from source `origin`; the caller checked better(u, d).
     void improve(uint32_t u, float d, float key, uint32_t from, uint32_t origin) {
         Label& l = label[u];
-        const bool queued = l.stamp == generation && l.heapPos != kNone;
+        Route& r = route[u];
+        const bool queued = l.stamp == generation && r.heapPos != kNone;
         l.stamp = generation;
         l.dist = d;
-        l.via = from;
-        l.origin = origin;
-        siftUp(queued ? l.heapPos : size++, HeapEntry{key, u});  // decrease, or (re)open
+        r.via = from;
+        r.origin = origin;
+        siftUp(queued ? r.heapPos : size++, HeapEntry{key, u});  // decrease, or (re)open
     }
 
     HeapEntry pop() {
         const HeapEntry top = heap[0];
-        label[top.node].heapPos = kNone;
+        route[top.node].heapPos = kNone;
         const HeapEntry last = heap[--size];
         if (size > 0) siftDown(0, last);
         return top;
@@ -70,7 +85,7 @@ struct Frontier {
 private:
     void place(uint32_t i, HeapEntry e) {
         heap[i] = e;
-        label[e.node].heapPos = i;
+        route[e.node].heapPos = i;
     }
     void siftUp(uint32_t i, HeapEntry e) {
         while (i > 0) {
@@ -113,6 +128,8 @@ struct vg_workspace {
     float* patchNodeDistance;      // per slot of one patch (vg_distance_field); 65536 entries
     uint32_t* patchNodeSlot;
     uint32_t* patchBestNode;       // per slot of one patch: index of its best node so far
+    uint32_t* patchEdgeBegin;      // per reached node of one patch: first of its crossing edges
+    vg::CrossingEdge* patchEdges;
 };
 
 namespace vg {

@@ -1,0 +1,140 @@
+// Proves that the runtime never allocates: replaces malloc, calloc, realloc, free,
+// aligned allocation and every operator new/delete with counting versions, bakes a blob
+// (allocation allowed), then counts the calls made while the runtime opens it with caller
+// memory and answers every query kind. Exit status 0 only when that count is zero.
+#include <malloc.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <new>
+#include <vector>
+
+#include "bake.h"
+#include "generators.h"
+#include "vorogeo.h"
+
+extern "C" void* __libc_malloc(size_t);
+extern "C" void* __libc_calloc(size_t, size_t);
+extern "C" void* __libc_realloc(void*, size_t);
+extern "C" void* __libc_memalign(size_t, size_t);
+extern "C" void __libc_free(void*);
+
+namespace {
+// Only the main thread counts (TBB workers from the bake may still be parked).
+thread_local bool counting = false;
+unsigned long long calls = 0;
+void count() {
+    if (counting) ++calls;
+}
+}  // namespace
+
+extern "C" void* malloc(size_t n) {
+    count();
+    return __libc_malloc(n);
+}
+extern "C" void* calloc(size_t a, size_t b) {
+    count();
+    return __libc_calloc(a, b);
+}
+extern "C" void* realloc(void* p, size_t n) {
+    count();
+    return __libc_realloc(p, n);
+}
+extern "C" void free(void* p) {
+    if (p) count();
+    __libc_free(p);
+}
+extern "C" void* aligned_alloc(size_t a, size_t n) {
+    count();
+    return __libc_memalign(a, n);
+}
+extern "C" void* memalign(size_t a, size_t n) {
+    count();
+    return __libc_memalign(a, n);
+}
+extern "C" int posix_memalign(void** out, size_t a, size_t n) {
+    count();
+    *out = __libc_memalign(a, n);
+    return *out ? 0 : 12;
+}
+void* operator new(size_t n) { return malloc(n); }
+void* operator new[](size_t n) { return malloc(n); }
+void* operator new(size_t n, const std::nothrow_t&) noexcept { return malloc(n); }
+void* operator new[](size_t n, const std::nothrow_t&) noexcept { return malloc(n); }
+void* operator new(size_t n, std::align_val_t a) { return memalign(size_t(a), n); }
+void* operator new[](size_t n, std::align_val_t a) { return memalign(size_t(a), n); }
+void operator delete(void* p) noexcept { free(p); }
+void operator delete[](void* p) noexcept { free(p); }
+void operator delete(void* p, size_t) noexcept { free(p); }
+void operator delete[](void* p, size_t) noexcept { free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { free(p); }
+void operator delete(void* p, size_t, std::align_val_t) noexcept { free(p); }
+void operator delete[](void* p, size_t, std::align_val_t) noexcept { free(p); }
+
+namespace {
+
+bool check(vg_status st, const char* what) {
+    if (st != VG_OK) std::fprintf(stderr, "alloc_check: %s: %s\n", what, vg_status_string(st));
+    return st == VG_OK;
+}
+
+// Opens `blob` with caller memory and runs every query kind; returns the allocation calls.
+bool runAll(const std::vector<uint8_t>& blobBytes, const char* label) {
+    std::vector<uint64_t> blob(blobBytes.size() / 8 + 1);  // 8-byte aligned copy, in place
+    std::copy(blobBytes.begin(), blobBytes.end(), reinterpret_cast<uint8_t*>(blob.data()));
+    std::vector<unsigned char> memory(64u << 20), wsMemory(64u << 20);
+    std::vector<float> field(1u << 20);
+    const uint32_t targets[4] = {3, 77, 555, 1200};
+    bool ok = true;
+
+    calls = 0;
+    counting = true;
+    size_t need = 0;
+    const vg_graph* g = nullptr;
+    vg_workspace* ws = nullptr;
+    ok = ok && check(vg_open_size(blob.data(), blobBytes.size(), &need), "vg_open_size");
+    ok = ok && need <= memory.size() && check(vg_open(blob.data(), blobBytes.size(), memory.data(), need, &g), "vg_open");
+    const size_t wsBytes = ok ? vg_workspace_size(g) : 0;
+    ok = ok && wsBytes <= wsMemory.size() && check(vg_workspace_init(g, wsMemory.data(), wsBytes, &ws), "workspace");
+    float d = 0, sum = 0;
+    size_t index = 0;
+    for (uint32_t i = 0; ok && i < 200; ++i) {
+        ok = check(vg_distance(g, ws, (i * 7919u) % vg_vertex_count(g), (i * 104729u) % vg_vertex_count(g), &d),
+                   "vg_distance");
+        sum += d;
+    }
+    ok = ok && check(vg_distance_within(g, ws, 1, 1500, 0.5f, &d), "vg_distance_within");
+    ok = ok && check(vg_distance_field(g, ws, targets, 4, field.data()), "vg_distance_field");
+    ok = ok && check(vg_nearest(g, ws, 10, targets, 4, &index, &d), "vg_nearest");
+    vg_status_string(VG_ERR_CHECKSUM);
+    vg_version_string();
+    counting = false;
+
+    std::printf("%s: %llu allocation calls while opening and answering %s (checksum of answers %.6f)\n", label,
+                calls, ok ? "every query kind" : "(stopped by an error)", double(sum));
+    return ok && calls == 0;
+}
+
+}  // namespace
+
+int main() {
+    // The harness must see allocations, or a zero below would prove nothing.
+    counting = true;
+    calls = 0;
+    delete new std::vector<int>(10);
+    counting = false;
+    if (calls < 2) {
+        std::fprintf(stderr, "alloc_check: the replaced allocator did not count (%llu calls)\n", calls);
+        return 1;
+    }
+    vorogeo::BakeOptions o;
+    vorogeo::BakeReport report;
+    const vorogeo::Mesh mesh = vorogeo::bumpyTorus(60, 30);
+    const std::vector<uint8_t> compressed = vorogeo::bakeMesh(mesh, o, report, nullptr);
+    o.compress = false;
+    const std::vector<uint8_t> plain = vorogeo::bakeMesh(mesh, o, report, nullptr);
+    const bool a = runAll(compressed, "compressed blob");
+    const bool b = runAll(plain, "uncompressed blob (in place)");
+    return a && b ? 0 : 1;
+}

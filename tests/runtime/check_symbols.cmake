@@ -1,0 +1,25 @@
+# Fails when the runtime static library references the C++ exception or allocation
+# runtime: run as cmake -DNM=... -DLIB=... -P check_symbols.cmake
+execute_process(COMMAND ${NM} -C --undefined-only ${LIB} OUTPUT_VARIABLE undefined RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "nm failed on ${LIB}")
+endif()
+set(found "")
+foreach(symbol "__cxa_throw" "__cxa_allocate_exception" "__gxx_personality" "_Unwind_Resume" "operator new"
+               "operator delete" "__cxa_guard_acquire" "std::" "malloc" "calloc" "realloc" "free")
+  string(REGEX MATCHALL "[^\n]*${symbol}[^\n]*" hits "${undefined}")
+  foreach(hit ${hits})
+    # "free" must be the function itself, not part of another name.
+    if(symbol STREQUAL "free" OR symbol STREQUAL "malloc" OR symbol STREQUAL "calloc" OR symbol STREQUAL "realloc")
+      if(NOT hit MATCHES " U ${symbol}$")
+        continue()
+      endif()
+    endif()
+    list(APPEND found "${hit}")
+  endforeach()
+endforeach()
+if(found)
+  string(REPLACE ";" "\n" found "${found}")
+  message(FATAL_ERROR "the runtime references forbidden symbols:\n${found}")
+endif()
+message(STATUS "runtime: no exception, allocation or C++ standard library symbols referenced")

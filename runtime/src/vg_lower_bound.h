@@ -1,0 +1,64 @@
+// Lower bounds on the distance between a node and a query endpoint, for the A* search:
+// the straight line, and the landmark bounds |d(L, v) - d(L, x)| (stored node distances
+// are rounded down to a step of the landmark's scale, hence the two-step margin).
+#pragma once
+
+#include "vg_graph.h"
+
+namespace vg {
+
+// d(L, x) for every landmark: an active node's own values, any other vertex's best over
+// the active nodes of its patches (+inf where no landmark path exists).
+inline void landmarkDistances(const vg_graph& g, uint32_t x, float* out) {
+    const uint32_t K = g.landmarkCount;
+    for (uint32_t k = 0; k < K; ++k) out[k] = __builtin_inff();
+    auto take = [&](uint32_t node, float offset) {
+        const uint16_t* q = g.nodeLandmarks + uint64_t(node) * K;
+        for (uint32_t k = 0; k < K; ++k) {
+            if (q[k] == kLandmarkUnreachable) continue;
+            const float d = float(q[k]) * g.landmarkScale[k] + offset;
+            if (d < out[k]) out[k] = d;
+        }
+    };
+    const uint32_t node = vertexNode(g, x);
+    if (node != kNone && nodeActive(g, node)) {
+        take(node, 0.0f);
+        return;
+    }
+    forEachPatchOf(g, x, [&](uint32_t patch, uint32_t slot) {
+        const Patch& p = g.second[patch];
+        for (uint32_t j = 0; j < p.nodeCount; ++j) {
+            const uint32_t n = g.slots[p.slotBegin + j];
+            if (!nodeActive(g, n)) continue;
+            const float e = entry(p, g.secondDistances, slot, j);
+            if (e != __builtin_inff()) take(n, e);
+        }
+    });
+}
+
+// A lower bound of d(a, b) from their landmark distances (0 without landmarks).
+inline float landmarkBound(const vg_graph& g, const float* la, const float* lb) {
+    float best = 0.0f;
+    for (uint32_t k = 0; k < g.landmarkCount; ++k) {
+        if (la[k] == __builtin_inff() || lb[k] == __builtin_inff()) continue;
+        const float d = __builtin_fabsf(la[k] - lb[k]) - 2.0f * g.landmarkScale[k];
+        if (d > best) best = d;
+    }
+    return best;
+}
+
+// A lower bound of d(node, x) from the node's record (position, then its landmark
+// distances, see vg_workspace.cpp) and x's position and landmark distances.
+inline float nodeBound(const vg_graph& g, const float* record, const float* xPosition, const float* xLandmarks) {
+    const float dx = record[0] - xPosition[0], dy = record[1] - xPosition[1], dz = record[2] - xPosition[2];
+    float best = __builtin_sqrtf(dx * dx + dy * dy + dz * dz);
+    for (uint32_t k = 0; k < g.landmarkCount; ++k) {
+        // +inf on either side (no landmark path) gives inf - inf or an infinite
+        // difference; neither passes the comparison below as a finite bound.
+        const float d = __builtin_fabsf(record[3 + k] - xLandmarks[k]) - 2.0f * g.landmarkScale[k];
+        if (d > best && d != __builtin_inff()) best = d;
+    }
+    return best;
+}
+
+}  // namespace vg

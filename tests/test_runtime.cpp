@@ -105,13 +105,7 @@ TEST_CASE("runtime: opens a baked blob, compressed or in place, and reports its 
     const vg_graph* graph = nullptr;
     REQUIRE(vg_open(copy.data(), raw.size(), memory.data(), need, &graph) == VG_OK);
     RuntimeGraph compressed = openOrFail(bumpyBlob());
-    RuntimeWorkspace a(compressed);
-    std::vector<unsigned char> wsMemory(vg_workspace_size(graph));
-    vg_workspace* ws = nullptr;
-    REQUIRE(vg_workspace_init(graph, wsMemory.data(), wsMemory.size(), &ws) == VG_OK);
-    float d = 0;
-    REQUIRE(vg_distance(graph, ws, 3, 1500, &d) == VG_OK);
-    CHECK(d == a.distance(3, 1500));
+    CHECK(RuntimeWorkspace(graph).distance(3, 1500) == RuntimeWorkspace(compressed).distance(3, 1500));
 
     // Too little memory is an error, not an overrun.
     CHECK(vg_open(copy.data(), raw.size(), memory.data(), need - 1, &graph) == VG_ERR_BUFFER_TOO_SMALL);
@@ -140,13 +134,7 @@ TEST_CASE("runtime: vg_open_file maps or decompresses with the caller's allocato
         REQUIRE(vg_open_file(path.c_str(), &alloc, &g) == VG_OK);
         CHECK(counter.live == 1);  // the handle's memory only; file bytes are mapped
         RuntimeGraph ref = openOrFail(*blob);
-        RuntimeWorkspace refWs(ref);
-        std::vector<unsigned char> wsMemory(vg_workspace_size(g));
-        vg_workspace* ws = nullptr;
-        REQUIRE(vg_workspace_init(g, wsMemory.data(), wsMemory.size(), &ws) == VG_OK);
-        float d = 0;
-        REQUIRE(vg_distance(g, ws, 10, 900, &d) == VG_OK);
-        CHECK(d == refWs.distance(10, 900));
+        CHECK(RuntimeWorkspace(g).distance(10, 900) == RuntimeWorkspace(ref).distance(10, 900));
         vg_close_file(g);
         CHECK(counter.live == 0);
     }

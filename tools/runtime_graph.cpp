@@ -43,7 +43,7 @@ bool RuntimeGraph::open(const std::vector<uint8_t>& blob, std::string& error) {
     return true;
 }
 
-RuntimeWorkspace::RuntimeWorkspace(const RuntimeGraph& g) : graph_(g.graph()) {
+RuntimeWorkspace::RuntimeWorkspace(const vg_graph* graph) : graph_(graph) {
     const size_t n = vg_workspace_size(graph_);
     memory_.resize(n);
     if (vg_workspace_init(graph_, memory_.data(), n, &ws_) != VG_OK) {

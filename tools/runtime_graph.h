@@ -41,7 +41,8 @@ private:
 
 class RuntimeWorkspace {
 public:
-    explicit RuntimeWorkspace(const RuntimeGraph& g);
+    explicit RuntimeWorkspace(const RuntimeGraph& g) : RuntimeWorkspace(g.graph()) {}
+    explicit RuntimeWorkspace(const vg_graph* graph);
     vg_workspace* get() const { return ws_; }
 
     float distance(uint32_t s, uint32_t t) const;  // aborts the program on a status error

@@ -85,10 +85,9 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, 
             if (d < best) best = d;
         }
     };
-    auto meetForward = [&](uint32_t v, float) { meet(v); };
-    auto meetBackward = [&](uint32_t v, float) { meet(v); };
-    seedEndpoint(g, s, 0, F, forwardKey, meetForward);
-    seedEndpoint(g, t, 0, B, backwardKey, meetBackward);
+    auto onLabel = [&](uint32_t v, float) { meet(v); };
+    seedEndpoint(g, s, 0, F, forwardKey, onLabel);
+    seedEndpoint(g, t, 0, B, backwardKey, onLabel);
 
     // One side exhausted: every node it can reach is final, so the best meeting is known.
     while (!F.empty() && !B.empty()) {
@@ -96,10 +95,10 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, 
         if (!(lower < best) || lower > kUnfoldSlack * maxDistance) break;
         if (F.topKey() <= B.topKey()) {
             const uint32_t u = F.pop().node;
-            relaxNode(g, u, F.label[u].dist, scope, F, forwardKey, meetForward);
+            relaxNode(g, u, F.label[u].dist, scope, F, forwardKey, onLabel);
         } else {
             const uint32_t u = B.pop().node;
-            relaxNode(g, u, B.label[u].dist, scope, B, backwardKey, meetBackward);
+            relaxNode(g, u, B.label[u].dist, scope, B, backwardKey, onLabel);
         }
     }
     return best <= maxDistance ? best : inf;

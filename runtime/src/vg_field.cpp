@@ -31,10 +31,8 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, const Frontier& f
             for (uint32_t m = g.nodeSecondBegin[w]; m < g.nodeSecondBegin[w + 1]; ++m) {
                 if (g.nodeSecond[m].patch != patchIndex) continue;
                 const float b = f.label[w].dist, l = euclidean(g, g.nodeVertex[u], g.nodeVertex[w]);
-                if (!(l > 0.0f)) continue;
-                const float xs = (a * a - b * b + l * l) * (0.5f / l), ys2 = a * a - xs * xs;
-                if (!(ys2 > 0.0f)) continue;
-                edges[count++] = CrossingEdge{g.nodeSecond[m].slot, l, xs, __builtin_sqrtf(ys2), b};
+                UnfoldedPoint source;
+                if (unfoldPoint(a, b, l, source)) edges[count++] = CrossingEdge{g.nodeSecond[m].slot, l, b, source};
             }
         }
     }
@@ -47,15 +45,9 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, const Frontier& f
         for (uint32_t k = begin[r]; k < begin[r + 1]; ++k) {
             const CrossingEdge& E = edges[k];
             const float e = entry(p, g.secondDistances, E.slot, j);
-            const float xt = (c * c - e * e + E.length * E.length) * (0.5f / E.length), yt2 = c * c - xt * xt;
-            if (!(yt2 > 0.0f)) continue;
-            const float yt = __builtin_sqrtf(yt2);
-            const float x = E.xs + (xt - E.xs) * (E.ys / (E.ys + yt));
-            if (!(x > 0.0f && x < E.length)) continue;
-            const float dx = xt - E.xs, dy = yt + E.ys;
-            float d = __builtin_sqrtf(dx * dx + dy * dy);
-            const float viaNode = (a + c < E.b + e ? a + c : E.b + e) / kUnfoldSlack;  // as crossing()
-            if (d < viaNode) d = viaNode;
+            UnfoldedPoint target;
+            if (!unfoldPoint(c, e, E.length, target)) continue;
+            const float d = crossingLength(E.source, target, E.length, a + c, E.b + e);
             if (d < o) o = d;
         }
     }

@@ -119,23 +119,24 @@ inline void forEachPatchOf(const vg_graph& g, uint32_t v, F&& f) {
         f(g.nodeSecond[m].patch, g.nodeSecond[m].slot);
 }
 
-// The straight path from s to t across the edge (u, w) of length l: s and t are unfolded
-// into the plane on opposite sides of the edge from their distances a = d(s,u),
-// b = d(s,w), c = d(t,u), e = d(t,w). A geodesic that crosses a patch border between two
-// vertices is this short, where a path through a border vertex is longer (by up to a few
-// percent for pairs a few edges apart). +inf when the segment misses the edge's interior
-// or the distances do not form triangles with the edge.
-inline float unfoldAcross(float a, float b, float c, float e, float l) {
-    if (!(l > 0.0f)) return __builtin_inff();
-    const float inv = 0.5f / l, l2 = l * l;
-    const float xs = (a * a - b * b + l2) * inv, ys2 = a * a - xs * xs;
-    const float xt = (c * c - e * e + l2) * inv, yt2 = c * c - xt * xt;
-    if (!(ys2 > 0.0f) || !(yt2 > 0.0f)) return __builtin_inff();  // also rejects NaN and +inf
-    const float ys = __builtin_sqrtf(ys2), yt = __builtin_sqrtf(yt2);
-    const float x = xs + (xt - xs) * (ys / (ys + yt));  // where the segment meets the edge line
-    if (!(x > 0.0f && x < l)) return __builtin_inff();
-    const float dx = xt - xs, dy = yt + ys;
-    return __builtin_sqrtf(dx * dx + dy * dy);
+// Unfolding a border edge (u, w) of length l into the plane, u at (0, 0) and w at (l, 0):
+// a point at distances a from u and b from w sits at (x, -y) below the line (source
+// side) or (x, y) above it (target side). The straight segment between a source point
+// and a target point is how far s is from t across the edge: a geodesic that crosses a
+// patch border between two vertices is this short, where a path through a border vertex
+// is longer (by up to a few percent for pairs a few edges apart).
+struct UnfoldedPoint {
+    float x, y;
+};
+
+// False when the distances do not form a proper triangle with the edge (also for NaN, +inf).
+inline bool unfoldPoint(float a, float b, float l, UnfoldedPoint& p) {
+    if (!(l > 0.0f)) return false;
+    p.x = (a * a - b * b + l * l) * (0.5f / l);
+    const float y2 = a * a - p.x * p.x;
+    if (!(y2 > 0.0f)) return false;
+    p.y = __builtin_sqrtf(y2);
+    return true;
 }
 
 // Unfolding assumes locally flat distance fields; where they are not, it could undercut
@@ -144,13 +145,23 @@ inline float unfoldAcross(float a, float b, float c, float e, float l) {
 // to unbounded ones).
 constexpr float kUnfoldSlack = 1.15f;
 
-// The unfolded crossing of edge (u, w), kept within kUnfoldSlack of the better path
-// through u or w; +inf when the straight path misses the edge.
-inline float crossing(float a, float b, float c, float e, float l) {
-    const float d = unfoldAcross(a, b, c, e, l);
-    if (d == __builtin_inff()) return d;
-    const float viaNode = (a + c < b + e ? a + c : b + e) / kUnfoldSlack;
+// The segment from source point s to target point t across the edge, kept within
+// kUnfoldSlack of the better node path (a + c through u, b + e through w); +inf when the
+// segment misses the edge's interior.
+inline float crossingLength(UnfoldedPoint s, UnfoldedPoint t, float l, float viaU, float viaW) {
+    const float x = s.x + (t.x - s.x) * (s.y / (s.y + t.y));  // where the segment meets the edge line
+    if (!(x > 0.0f && x < l)) return __builtin_inff();
+    const float dx = t.x - s.x, dy = t.y + s.y;
+    const float d = __builtin_sqrtf(dx * dx + dy * dy);
+    const float viaNode = (viaU < viaW ? viaU : viaW) / kUnfoldSlack;
     return d < viaNode ? viaNode : d;
+}
+
+// The crossing of edge (u, w) from distances a = d(s,u), b = d(s,w), c = d(t,u), e = d(t,w).
+inline float crossing(float a, float b, float c, float e, float l) {
+    UnfoldedPoint s, t;
+    if (!unfoldPoint(a, b, l, s) || !unfoldPoint(c, e, l, t)) return __builtin_inff();
+    return crossingLength(s, t, l, a + c, b + e);
 }
 
 inline float euclidean(const vg_graph& g, uint32_t a, uint32_t b) {

@@ -12,11 +12,13 @@ constexpr uint32_t kFirstLayerBit = 0x80000000u;
 
 constexpr uint32_t kMaxPatchEdges = 4096;  // border edges unfolded per patch (more are skipped)
 
-// A border edge of the patch being filled, from a reached node to a neighbour node:
-// the neighbour's slot, the edge length and the unfolded source point (xs, -ys).
+// A border edge of the patch being filled, from a reached node to a neighbour node: the
+// neighbour's slot, the edge length, the neighbour's distance and the unfolded source
+// point (the same for every vertex of the patch, so computed once).
 struct CrossingEdge {
     uint32_t slot;
-    float length, xs, ys, b;
+    float length, b;
+    UnfoldedPoint source;
 };
 
 struct Potential {

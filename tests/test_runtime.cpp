@@ -246,6 +246,32 @@ TEST_CASE("runtime: bounded queries, nearest of a set and multi-source fields ag
         for (uint32_t v = 0; v < V; ++v) minimum[v] = std::min(minimum[v], one[v]);
     }
     for (uint32_t v = 0; v < V; ++v) REQUIRE(std::fabs(multi[v] - minimum[v]) <= 0.02f * minimum[v]);
+
+    // The nearest-source labels name a source whose own field gives that distance (the
+    // Voronoi cell), and the distances are those of vg_distance_field.
+    std::vector<float> labelled(V);
+    std::vector<uint32_t> nearest(V, 77);
+    REQUIRE(vg_distance_field_nearest(graph, ws.get(), sources.data(), sources.size(), labelled.data(),
+                                      nearest.data()) == VG_OK);
+    std::vector<std::vector<float>> single;
+    for (uint32_t s : sources) single.push_back(ws.field({s}));
+    size_t agree = 0;
+    for (uint32_t v = 0; v < V; ++v) {
+        REQUIRE(labelled[v] == multi[v]);
+        REQUIRE(nearest[v] < sources.size());
+        CHECK(single[nearest[v]][v] <= labelled[v] * 1.02f + 1e-6f);
+        agree += single[nearest[v]][v] == minimum[v];
+    }
+    CHECK(agree >= V * 95 / 100);  // off only where two sources tie within the unfolding
+    for (size_t i = 0; i < sources.size(); ++i) CHECK(nearest[sources[i]] == i);
+    // A source listed twice is named by its first listing; no source: none reachable.
+    const uint32_t twice[3] = {900, 17, 900};
+    REQUIRE(vg_distance_field_nearest(graph, ws.get(), twice, 3, labelled.data(), nearest.data()) == VG_OK);
+    CHECK(nearest[900] == 0);
+    CHECK(nearest[17] == 1);
+    REQUIRE(vg_distance_field_nearest(graph, ws.get(), twice, 0, labelled.data(), nearest.data()) == VG_OK);
+    CHECK(nearest[5] == 0);
+    CHECK(std::isinf(labelled[5]));
 }
 
 TEST_CASE("runtime: vertices of different components are at +infinity in every query", "[runtime]") {

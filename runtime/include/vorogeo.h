@@ -138,6 +138,14 @@ VG_API vg_status vg_distance_within(const vg_graph* graph, vg_workspace* workspa
 VG_API vg_status vg_distance_field(const vg_graph* graph, vg_workspace* workspace,
                             const uint32_t* sources, size_t source_count, float* out_distances);
 
+/* As vg_distance_field, and also which source is nearest to each vertex (a geodesic
+ * Voronoi labelling): out_nearest[v] is an index into `sources` (the first listing of a
+ * vertex given twice), or source_count where no source is reachable. out_nearest has
+ * vg_vertex_count() entries; NULL makes this vg_distance_field. */
+VG_API vg_status vg_distance_field_nearest(const vg_graph* graph, vg_workspace* workspace,
+                                    const uint32_t* sources, size_t source_count,
+                                    float* out_distances, uint32_t* out_nearest);
+
 /* Which of `target_count` targets is geodesically nearest to `source`: its index in
  * `targets` (the first such index when a vertex is listed twice) and its distance.
  * When no target is reachable: index = target_count and distance = +infinity. */

@@ -15,6 +15,7 @@ using namespace vg;
 // is the same for every vertex of the patch, so it is computed once per edge here.
 void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_workspace& ws,
                        uint32_t reached, float* out) {
+    // (Crossing edges join nodes of the best node's source, so the nearest source stays.)
     const Patch& p = g.second[patchIndex];
     const uint32_t* slots = g.slots + p.slotBegin;
     CrossingEdge* edges = ws.patchEdges;
@@ -54,7 +55,8 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, const Frontier& f
 }
 
 // Vertices of one patch that are not active nodes: best over its settled active nodes.
-void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_workspace& ws, float* out) {
+void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_workspace& ws, float* out,
+               uint32_t* nearest) {
     const Patch& p = g.second[patchIndex];
     const uint32_t* slots = g.slots + p.slotBegin;
     for (uint32_t j = p.nodeCount; j < p.slotCount; ++j) ws.patchBestNode[j] = kNone;
@@ -79,7 +81,10 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
             if (nodeActive(g, n)) continue;
             const float d = base + entry(p, g.secondDistances, i, j);
             float& o = out[g.nodeVertex[n]];
-            if (d < o) o = d;
+            if (d < o) {
+                o = d;
+                if (nearest) nearest[g.nodeVertex[n]] = f.route[slots[i]].origin;
+            }
         }
         for (uint32_t j = p.nodeCount; j < p.slotCount; ++j) {
             const uint32_t q = quantum(g.secondDistances, row + j);
@@ -93,12 +98,16 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
         }
     }
     unfoldAtBestNodes(g, patchIndex, f, ws, reached, out);
+    if (nearest)
+        for (uint32_t j = p.nodeCount; j < p.slotCount; ++j)
+            if (ws.patchBestNode[j] != kNone) nearest[slots[j]] = f.route[slots[ws.patchNodeSlot[ws.patchBestNode[j]]]].origin;
 }
 
 }  // namespace
 
-extern "C" vg_status vg_distance_field(const vg_graph* graph, vg_workspace* workspace, const uint32_t* sources,
-                                       size_t source_count, float* out_distances) {
+extern "C" vg_status vg_distance_field_nearest(const vg_graph* graph, vg_workspace* workspace,
+                                               const uint32_t* sources, size_t source_count, float* out_distances,
+                                               uint32_t* out_nearest) {
     const vg_status st = vg::checkQuery(graph, workspace, out_distances);
     if (st != VG_OK) return st;
     if (source_count > 0 && sources == nullptr) return VG_ERR_INVALID_ARGUMENT;
@@ -110,6 +119,8 @@ extern "C" vg_status vg_distance_field(const vg_graph* graph, vg_workspace* work
     const uint32_t gen = beginQuery(ws);
     const float inf = __builtin_inff();
     for (uint32_t v = 0; v < g.vertexCount; ++v) out_distances[v] = inf;
+    if (out_nearest)
+        for (uint32_t v = 0; v < g.vertexCount; ++v) out_nearest[v] = uint32_t(source_count);
 
     Frontier& F = ws.forward;
     const Scope everywhere{ws.detail, gen, true};
@@ -123,8 +134,11 @@ extern "C" vg_status vg_distance_field(const vg_graph* graph, vg_workspace* work
     }
 
     for (uint32_t n = 0; n < g.nodeCount; ++n)
-        if (nodeActive(g, n) && F.labelled(n)) out_distances[g.nodeVertex[n]] = F.label[n].dist;
-    for (uint32_t p = 0; p < g.secondCount; ++p) fillPatch(g, p, F, ws, out_distances);
+        if (nodeActive(g, n) && F.labelled(n)) {
+            out_distances[g.nodeVertex[n]] = F.label[n].dist;
+            if (out_nearest) out_nearest[g.nodeVertex[n]] = F.route[n].origin;
+        }
+    for (uint32_t p = 0; p < g.secondCount; ++p) fillPatch(g, p, F, ws, out_distances, out_nearest);
     // A source's own patches also hold the direct entries: paths that touch no node.
     for (size_t i = 0; i < source_count; ++i) {
         const uint32_t s = sources[i];
@@ -135,11 +149,24 @@ extern "C" vg_status vg_distance_field(const vg_graph* graph, vg_workspace* work
                     const uint32_t id = g.slots[p.slotBegin + j];
                     const uint32_t v = j < p.nodeCount ? g.nodeVertex[id] : id;
                     const float d = entry(p, g.secondDistances, slot, j);
-                    if (d < out_distances[v]) out_distances[v] = d;
+                    if (d < out_distances[v]) {
+                        out_distances[v] = d;
+                        if (out_nearest) out_nearest[v] = uint32_t(i);
+                    }
                 }
             });
         }
-        out_distances[s] = 0.0f;
+    }
+    // Sources last, so that a vertex listed twice (or a tie at distance 0) names its
+    // first listing.
+    for (size_t i = source_count; i-- > 0;) {
+        out_distances[sources[i]] = 0.0f;
+        if (out_nearest) out_nearest[sources[i]] = uint32_t(i);
     }
     return VG_OK;
+}
+
+extern "C" vg_status vg_distance_field(const vg_graph* graph, vg_workspace* workspace, const uint32_t* sources,
+                                       size_t source_count, float* out_distances) {
+    return vg_distance_field_nearest(graph, workspace, sources, source_count, out_distances, nullptr);
 }

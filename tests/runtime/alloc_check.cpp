@@ -85,6 +85,7 @@ bool runAll(const std::vector<uint8_t>& blobBytes, const char* label) {
     std::copy(blobBytes.begin(), blobBytes.end(), reinterpret_cast<uint8_t*>(blob.data()));
     std::vector<unsigned char> memory(64u << 20), wsMemory(64u << 20);
     std::vector<float> field(1u << 20);
+    std::vector<uint32_t> labels(1u << 20);
     const uint32_t targets[4] = {3, 77, 555, 1200};
     bool ok = true;
 
@@ -106,6 +107,8 @@ bool runAll(const std::vector<uint8_t>& blobBytes, const char* label) {
     }
     ok = ok && check(vg_distance_within(g, ws, 1, 1500, 0.5f, &d), "vg_distance_within");
     ok = ok && check(vg_distance_field(g, ws, targets, 4, field.data()), "vg_distance_field");
+    ok = ok && check(vg_distance_field_nearest(g, ws, targets, 4, field.data(), labels.data()),
+                     "vg_distance_field_nearest");
     ok = ok && check(vg_nearest(g, ws, 10, targets, 4, &index, &d), "vg_nearest");
     vg_status_string(VG_ERR_CHECKSUM);
     vg_version_string();

@@ -1,0 +1,155 @@
+// vorogeo bench: the runtime next to the exact engine and edge Dijkstra, on the same
+// random pairs and sources in one run, with ratios.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "cli.h"
+#include "geodesic_exact.h"
+#include "runtime_graph.h"
+#include "timing.h"
+#include "tool_mesh.h"
+
+namespace vorogeo::tools {
+
+namespace {
+
+const char* kUsage =
+    "usage: vorogeo bench MESH BLOB [--pairs N] [--sources M] [--dijkstra-pairs D] [--seed S] [--json]\n"
+    "  Times, in one run on the same random vertices (1 thread):\n"
+    "    runtime point-to-point on N pairs (default 1000) and one-to-all from M sources\n"
+    "    (default 5); the exact engine (MMP) one-to-all from the M sources and\n"
+    "    point-to-point with early exit on the first M pairs; Dijkstra on the edge graph\n"
+    "    one-to-all from the M sources and point-to-point with early exit on the first D\n"
+    "    pairs (default 200). Also the error of the runtime's and of Dijkstra's fields\n"
+    "    against the exact ones. Prints each median (p99 for point-to-point) and the ratios.\n";
+
+struct Errors {
+    double sum = 0, max = 0;
+    size_t count = 0;
+    void add(double value, double exact) {
+        if (!(exact > 0) || !std::isfinite(exact)) return;
+        const double rel = std::fabs(value - exact) / exact;
+        sum += rel, max = std::max(max, rel), ++count;
+    }
+    double mean() const { return count ? sum / double(count) : 0.0; }
+};
+
+}  // namespace
+
+int runBench(int argc, char** argv) {
+    cli::Args args(argc, argv, {"--pairs", "--sources", "--dijkstra-pairs", "--seed"}, {"--json", "--help", "--repair"});
+    if (args.flag("--help")) {
+        std::printf("%s", kUsage);
+        return 0;
+    }
+    if (args.positional().size() != 2) throw cli::UsageError(std::string("expected MESH and BLOB\n") + kUsage);
+    const long long pairCount = args.integer("--pairs", 1000), sourceCount = args.integer("--sources", 5);
+    const long long dijkstraPairs = args.integer("--dijkstra-pairs", 200);
+    if (pairCount < 1 || sourceCount < 1 || dijkstraPairs < 1)
+        throw cli::UsageError("--pairs, --sources and --dijkstra-pairs must be >= 1");
+    const uint64_t seed = uint64_t(args.integer("--seed", 1));
+
+    Mesh mesh;
+    if (!loadMeshForCommand("bench", args.positional()[0], args.flag("--repair"), mesh)) return 1;
+    RuntimeGraph graph;
+    std::string error;
+    if (!graph.load(args.positional()[1], error)) {
+        std::fprintf(stderr, "vorogeo bench: %s\n", error.c_str());
+        return 1;
+    }
+    if (graph.vertexCount() != mesh.vertexCount()) {
+        std::fprintf(stderr, "vorogeo bench: the blob has %u vertices but the mesh has %u: not baked from this mesh\n",
+                     graph.vertexCount(), mesh.vertexCount());
+        return 1;
+    }
+    const uint32_t V = mesh.vertexCount();
+    std::mt19937_64 rng(seed);
+    std::uniform_int_distribution<uint32_t> pick(0, V - 1);
+    std::vector<std::pair<uint32_t, uint32_t>> pairs(static_cast<size_t>(pairCount));
+    for (auto& p : pairs) p = {pick(rng), pick(rng)};
+    std::vector<uint32_t> sources(static_cast<size_t>(sourceCount));
+    for (uint32_t& s : sources) s = pick(rng);
+
+    RuntimeWorkspace ws(graph);
+    volatile float sink = ws.distance(pairs[0].first, pairs[0].second);  // warm caches once
+    std::vector<double> sssdUs, msadMs, exactSsadMs, exactSssdMs, dijkstraSssdUs, dijkstraSsadMs;
+    for (const auto& [s, t] : pairs) {
+        Stopwatch w;
+        sink = ws.distance(s, t);
+        sssdUs.push_back(w.seconds() * 1e6);
+    }
+
+    ExactGeodesic geo(mesh);
+    ExactWorkspace exactWs;
+    Errors runtimeErr, dijkstraErr;
+    std::vector<double> exact, dijkstra;
+    for (uint32_t s : sources) {
+        Stopwatch a;
+        const std::vector<float> field = ws.field({s});
+        msadMs.push_back(a.seconds() * 1e3);
+        ExactQuery q;
+        q.sources.push_back(GeodesicSource::atVertex(s));
+        Stopwatch b;
+        exactWs.run(geo, q, exact);
+        exactSsadMs.push_back(b.seconds() * 1e3);
+        Stopwatch c;
+        edgeDijkstra(mesh, s, dijkstra);
+        dijkstraSsadMs.push_back(c.seconds() * 1e3);
+        for (uint32_t v = 0; v < V; ++v) {
+            runtimeErr.add(field[v], exact[v]);
+            dijkstraErr.add(dijkstra[v], exact[v]);
+        }
+    }
+    for (size_t i = 0; i < std::min<size_t>(size_t(sourceCount), pairs.size()); ++i) {
+        ExactQuery q;
+        q.sources.push_back(GeodesicSource::atVertex(pairs[i].first));
+        q.targets.push_back(pairs[i].second);
+        Stopwatch w;
+        exactWs.run(geo, q, exact);
+        exactSssdMs.push_back(w.seconds() * 1e3);
+    }
+    for (size_t i = 0; i < std::min<size_t>(size_t(dijkstraPairs), pairs.size()); ++i) {
+        Stopwatch w;
+        edgeDijkstra(mesh, pairs[i].first, dijkstra, pairs[i].second);
+        dijkstraSssdUs.push_back(w.seconds() * 1e6);
+    }
+    (void)sink;
+
+    const double sssdP50 = percentile(sssdUs, 50), sssdP99 = percentile(sssdUs, 99);
+    const double msad = percentile(msadMs, 50), exactSsad = percentile(exactSsadMs, 50);
+    const double exactSssd = percentile(exactSssdMs, 50), dijkstraSssd = percentile(dijkstraSssdUs, 50);
+    const double dijkstraSsad = percentile(dijkstraSsadMs, 50);
+    if (args.flag("--json")) {
+        std::printf("{\"mesh\":\"%s\",\"vertices\":%u,\"blob_bytes\":%zu,\"pairs\":%zu,\"sources\":%zu,"
+                    "\"sssd_p50_us\":%.2f,\"sssd_p99_us\":%.2f,\"msad_p50_ms\":%.3f,"
+                    "\"exact_sssd_p50_ms\":%.3f,\"exact_ssad_p50_ms\":%.3f,"
+                    "\"dijkstra_sssd_p50_us\":%.2f,\"dijkstra_ssad_p50_ms\":%.3f,"
+                    "\"speedup_sssd_vs_exact\":%.1f,\"speedup_ssad_vs_exact\":%.1f,"
+                    "\"speedup_sssd_vs_dijkstra\":%.2f,\"speedup_ssad_vs_dijkstra\":%.2f,"
+                    "\"field_mean_rel_error\":%.6e,\"field_max_rel_error\":%.6e,"
+                    "\"dijkstra_mean_rel_error\":%.6e,\"dijkstra_max_rel_error\":%.6e}\n",
+                    args.positional()[0].c_str(), V, graph.blobBytes(), pairs.size(), sources.size(), sssdP50, sssdP99,
+                    msad, exactSssd, exactSsad, dijkstraSssd, dijkstraSsad, exactSssd * 1e3 / sssdP50,
+                    exactSsad / msad, dijkstraSssd / sssdP50, dijkstraSsad / msad, runtimeErr.mean(), runtimeErr.max,
+                    dijkstraErr.mean(), dijkstraErr.max);
+        return 0;
+    }
+    std::printf("%s: %u vertices, blob %zu bytes; %zu pairs, %zu sources, 1 thread\n", args.positional()[0].c_str(), V,
+                graph.blobBytes(), pairs.size(), sources.size());
+    std::printf("%-34s %12s %12s %12s\n", "", "runtime", "exact (MMP)", "Dijkstra");
+    std::printf("%-34s %9.1f us %9.1f ms %9.1f us\n", "point-to-point p50", sssdP50, exactSssd, dijkstraSssd);
+    std::printf("%-34s %9.1f us\n", "point-to-point p99", sssdP99);
+    std::printf("%-34s %9.2f ms %9.1f ms %9.2f ms\n", "one-to-all p50", msad, exactSsad, dijkstraSsad);
+    std::printf("%-34s %10.4f %% %12s %10.4f %%\n", "one-to-all mean relative error", runtimeErr.mean() * 100, "0",
+                dijkstraErr.mean() * 100);
+    std::printf("%-34s %10.4f %% %12s %10.4f %%\n", "one-to-all max relative error", runtimeErr.max * 100, "0",
+                dijkstraErr.max * 100);
+    std::printf("runtime speed-up: point-to-point %.0fx vs exact, %.1fx vs Dijkstra; one-to-all %.0fx vs exact, "
+                "%.2fx vs Dijkstra\n",
+                exactSssd * 1e3 / sssdP50, dijkstraSssd / sssdP50, exactSsad / msad, dijkstraSsad / msad);
+    return 0;
+}
+
+}  // namespace vorogeo::tools

@@ -1,0 +1,160 @@
+// vorogeo render: a picture of a distance field (runtime, exact, and their error), and a
+// vertex-coloured PLY of it.
+#include <cmath>
+#include <cstdio>
+
+#include "cli.h"
+#include "coloured_ply.h"
+#include "geodesic_exact.h"
+#include "render.h"
+#include "runtime_graph.h"
+#include "timing.h"
+#include "tool_mesh.h"
+
+namespace vorogeo::tools {
+
+namespace {
+
+const char* kUsage =
+    "usage: vorogeo render MESH [--blob BLOB] --source V [--exact] [--out FIELD.png] [--ply OUT.ply]\n"
+    "                      [--size WxH] [--view YAW,PITCH] [--isolines N] [--error-scale PERCENT]\n"
+    "  Renders the geodesic distance field from vertex V, shaded with isolines (N of them\n"
+    "  over the farthest distance, default 20). With --blob the field comes from the\n"
+    "  runtime; --exact adds the exact field (MMP) beside it and a map of the relative\n"
+    "  error (dark red = --error-scale percent, default 1). Without --blob the exact field\n"
+    "  is drawn. --ply writes the mesh coloured by the first field. --size is per panel\n"
+    "  (default 640x640); --view turns the mesh (degrees, default 0,0: looking down -z).\n";
+
+std::vector<double> exactField(const Mesh& mesh, uint32_t source) {
+    ExactGeodesic geo(mesh);
+    ExactWorkspace ws;
+    ExactQuery q;
+    q.sources.push_back(GeodesicSource::atVertex(source));
+    std::vector<double> dist;
+    ws.run(geo, q, dist);
+    return dist;
+}
+
+void parseSize(const std::string& text, int& w, int& h) {
+    if (std::sscanf(text.c_str(), "%dx%d", &w, &h) != 2 || w < 16 || h < 16 || w > 8192 || h > 8192)
+        throw cli::UsageError("--size must be WxH with each side in 16..8192, got '" + text + "'");
+}
+
+}  // namespace
+
+int runRender(int argc, char** argv) {
+    cli::Args args(argc, argv, {"--blob", "--source", "--out", "--ply", "--size", "--view", "--isolines", "--error-scale"},
+                   {"--exact", "--help", "--repair"});
+    if (args.flag("--help")) {
+        std::printf("%s", kUsage);
+        return 0;
+    }
+    if (args.positional().size() != 1) throw cli::UsageError(std::string("expected one MESH\n") + kUsage);
+    if (!args.has("--source")) throw cli::UsageError("--source V is required");
+    if (!args.has("--out") && !args.has("--ply")) throw cli::UsageError("nothing to write: give --out and/or --ply");
+    int width = 640, height = 640;
+    if (args.has("--size")) parseSize(args.str("--size"), width, height);
+    View view;
+    if (args.has("--view")) {
+        const std::string v = args.str("--view");
+        if (std::sscanf(v.c_str(), "%lf,%lf", &view.yawDegrees, &view.pitchDegrees) != 2)
+            throw cli::UsageError("--view must be YAW,PITCH in degrees, got '" + v + "'");
+    }
+    const long long isolines = args.integer("--isolines", 20);
+    if (isolines < 0 || isolines > 1000) throw cli::UsageError("--isolines must be in 0..1000");
+    const double errorScale = args.number("--error-scale", 1.0) / 100.0;
+    if (!(errorScale > 0)) throw cli::UsageError("--error-scale must be > 0");
+
+    Mesh mesh;
+    if (!loadMeshForCommand("render", args.positional()[0], args.flag("--repair"), mesh)) return 1;
+    const long long source = args.integer("--source", 0);
+    if (source < 0 || source >= mesh.vertexCount()) {
+        std::fprintf(stderr, "vorogeo render: --source %lld out of range (the mesh has %u vertices)\n", source,
+                     mesh.vertexCount());
+        return 1;
+    }
+
+    std::vector<double> runtime, exact;
+    if (args.has("--blob")) {
+        RuntimeGraph graph;
+        std::string error;
+        if (!graph.load(args.str("--blob"), error)) {
+            std::fprintf(stderr, "vorogeo render: %s\n", error.c_str());
+            return 1;
+        }
+        if (graph.vertexCount() != mesh.vertexCount()) {
+            std::fprintf(stderr, "vorogeo render: the blob has %u vertices but the mesh has %u: not baked from this mesh\n",
+                         graph.vertexCount(), mesh.vertexCount());
+            return 1;
+        }
+        RuntimeWorkspace ws(graph);
+        Stopwatch watch;
+        const std::vector<float> f = ws.field({uint32_t(source)});
+        std::printf("runtime field: %.2f ms\n", watch.seconds() * 1e3);
+        runtime.assign(f.begin(), f.end());
+    }
+    if (!args.has("--blob") || args.flag("--exact")) {
+        Stopwatch watch;
+        exact = exactField(mesh, uint32_t(source));
+        std::printf("exact field: %.2f ms\n", watch.seconds() * 1e3);
+    }
+
+    // One colour scale and one isoline spacing for every panel: the exact field's when there is one.
+    double maxFinite = 0;
+    std::vector<Panel> panels;
+    const std::vector<double>& reference = exact.empty() ? runtime : exact;
+    colourField(reference, maxFinite);
+    auto fieldPanel = [&](const std::vector<double>& field, const std::string& caption) {
+        Panel p;
+        p.vertexColour.reserve(field.size());
+        for (double d : field)
+            p.vertexColour.push_back(std::isfinite(d) ? distanceColour(maxFinite > 0 ? d / maxFinite : 0)
+                                                      : unreachableColour());
+        p.isoValue = field;
+        p.isoSpacing = isolines > 0 ? maxFinite / double(isolines) : 0;
+        p.caption = caption;
+        return p;
+    };
+    if (!runtime.empty()) panels.push_back(fieldPanel(runtime, "vorogeo runtime, source " + std::to_string(source)));
+    if (!exact.empty()) panels.push_back(fieldPanel(exact, "exact (MMP), source " + std::to_string(source)));
+    if (!runtime.empty() && !exact.empty()) {
+        Panel err;
+        double sum = 0, worst = 0;
+        size_t counted = 0;
+        for (uint32_t v = 0; v < mesh.vertexCount(); ++v) {
+            double rel = 0;
+            if (std::isfinite(exact[v]) && exact[v] > 0) {
+                rel = std::fabs(runtime[v] - exact[v]) / exact[v];
+                sum += rel, worst = std::max(worst, rel), ++counted;
+            } else if (std::isfinite(exact[v]) != std::isfinite(runtime[v])) {
+                rel = INFINITY;
+            }
+            err.vertexColour.push_back(errorColour(rel / errorScale));
+        }
+        char caption[128];
+        std::snprintf(caption, sizeof caption, "relative error (dark red = %g%%)", errorScale * 100);
+        err.caption = caption;
+        panels.push_back(err);
+        std::printf("relative error over %zu vertices: mean %.4f%%, max %.4f%%\n", counted,
+                    counted ? 100 * sum / double(counted) : 0.0, 100 * worst);
+    }
+
+    if (args.has("--out")) {
+        const Image image = renderPanels(mesh, panels, width, height, view);
+        std::string error;
+        if (!writePng(image, args.str("--out"), error)) {
+            std::fprintf(stderr, "vorogeo render: %s\n", error.c_str());
+            return 1;
+        }
+        std::printf("wrote %s (%dx%d, %zu panels)\n", args.str("--out").c_str(), image.width, image.height,
+                    panels.size());
+    }
+    if (args.has("--ply")) {
+        writeColouredPly(mesh, panels[0].vertexColour, args.str("--ply"));
+        std::printf("wrote %s (vertex colours of the %s field)\n", args.str("--ply").c_str(),
+                    runtime.empty() ? "exact" : "runtime");
+    }
+    return 0;
+}
+
+}  // namespace vorogeo::tools

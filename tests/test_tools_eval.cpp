@@ -1,0 +1,176 @@
+// The evaluation tools: rendering, Voronoi partition, and the bench / render / voronoi
+// commands through the real binary, on a generated mesh.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <stb_image.h>
+
+#include "bake.h"
+#include "blob_writer.h"
+#include "generators.h"
+#include "geodesic_exact.h"
+#include "mesh_io.h"
+#include "render.h"
+#include "runtime_graph.h"
+#include "test_helpers.h"
+#include "voronoi.h"
+
+using namespace vorogeo;
+using namespace vorogeo::tools;
+
+namespace {
+
+// A small baked mesh shared by the test cases of one process, on disk for the commands.
+struct Fixture {
+    test::TempDir dir;
+    Mesh mesh = bumpyTorus(40, 20);  // 800 vertices
+    std::string meshPath = dir.file("torus.ply"), blobPath = dir.file("torus.vgeo");
+    Fixture() {
+        std::string error;
+        REQUIRE(writeMesh(mesh, meshPath, error));
+        BakeOptions o;
+        BakeReport report;
+        writeFileAtomically(blobPath, bakeMesh(mesh, o, report, nullptr));
+        Mesh loaded;
+        REQUIRE(loadMesh(meshPath, LoadOptions{}, loaded).ok);
+        mesh = loaded;  // the mesh as the commands see it
+    }
+};
+Fixture& fixture() {
+    static Fixture f;
+    return f;
+}
+
+std::vector<double> exactField(const Mesh& mesh, uint32_t source) {
+    ExactGeodesic geo(mesh);
+    ExactWorkspace ws;
+    ExactQuery q;
+    q.sources.push_back(GeodesicSource::atVertex(source));
+    std::vector<double> d;
+    ws.run(geo, q, d);
+    return d;
+}
+
+Panel fieldPanel(const std::vector<double>& field) {
+    Panel p;
+    double maxFinite = 0;
+    p.vertexColour = colourField(field, maxFinite);
+    p.isoValue = field;
+    p.isoSpacing = maxFinite / 10;
+    p.caption = "test";
+    return p;
+}
+
+}  // namespace
+
+TEST_CASE("render: panels have the requested size and follow the field", "[tools][render]") {
+    const Mesh& mesh = fixture().mesh;
+    const Image a = renderPanels(mesh, {fieldPanel(exactField(mesh, 0))}, 200, 150, View{});
+    REQUIRE(a.width == 200);
+    REQUIRE(a.height > 150);  // plus the caption strip
+    std::set<uint32_t> colours;
+    for (const Rgb& c : a.pixels) colours.insert(uint32_t(c.r) << 16 | uint32_t(c.g) << 8 | c.b);
+    CHECK(colours.size() > 100);  // shading, colour ramp and isolines, not a flat fill
+
+    // Another source shades other pixels; the same field shades the same ones.
+    const Image b = renderPanels(mesh, {fieldPanel(exactField(mesh, 400))}, 200, 150, View{});
+    const Image again = renderPanels(mesh, {fieldPanel(exactField(mesh, 0))}, 200, 150, View{});
+    size_t differ = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i)
+        differ += a.pixels[i].r != b.pixels[i].r || a.pixels[i].g != b.pixels[i].g || a.pixels[i].b != b.pixels[i].b;
+    CHECK(differ > a.pixels.size() / 20);
+    CHECK(std::equal(a.pixels.begin(), a.pixels.end(), again.pixels.begin(),
+                     [](Rgb x, Rgb y) { return x.r == y.r && x.g == y.g && x.b == y.b; }));
+
+    // Two panels side by side; a constant field draws no isolines and one colour ramp value.
+    Panel flat = fieldPanel(std::vector<double>(mesh.vertexCount(), 1.0));
+    const Image two = renderPanels(mesh, {flat, flat}, 100, 100, View{30, 20});
+    CHECK(two.width == 200);
+}
+
+TEST_CASE("voronoi: Poisson-disk seeds keep their distance; growing spheres give the nearest seed",
+          "[tools][voronoi]") {
+    const Mesh& mesh = fixture().mesh;
+    double radius = 0;
+    const std::vector<uint32_t> seeds = poissonDiskSeeds(mesh, 12, 7, radius);
+    REQUIRE(seeds.size() == 12);
+    REQUIRE(radius > 0);
+    for (size_t i = 0; i < seeds.size(); ++i)
+        for (size_t j = i + 1; j < seeds.size(); ++j)
+            CHECK(distance(mesh.positions[seeds[i]], mesh.positions[seeds[j]]) >= radius);
+    double again = 0;
+    CHECK(poissonDiskSeeds(mesh, 12, 7, again) == seeds);
+
+    RuntimeGraph graph;
+    std::string error;
+    REQUIRE(graph.load(fixture().blobPath, error));
+    RuntimeWorkspace ws(graph);
+    const VoronoiResult r = growingSpheres(mesh, graph.graph(), ws.get(), seeds, radius);
+    CHECK(r.rounds >= 2);
+    CHECK(r.boundedQueries > 0);
+    // Every label is the argmin over all seeds of the point-to-point distance.
+    for (uint32_t v = 0; v < mesh.vertexCount(); ++v) {
+        float best = INFINITY;
+        uint32_t label = uint32_t(seeds.size());
+        for (uint32_t k = 0; k < seeds.size(); ++k) {
+            const float d = ws.distance(seeds[k], v);
+            if (d < best) best = d, label = k;
+        }
+        REQUIRE(r.distance[v] == best);
+        REQUIRE(r.label[v] == label);
+    }
+}
+
+TEST_CASE("vorogeo bench, render and voronoi run on a baked mesh", "[tools][cli]") {
+    const Fixture& f = fixture();
+    const std::string mesh = test::quote(f.meshPath), blob = test::quote(f.blobPath);
+
+    test::ToolResult r = test::runTool("bench " + mesh + " " + blob + " --pairs 50 --sources 2 --json");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    for (const char* key : {"sssd_p50_us", "sssd_p99_us", "msad_p50_ms", "exact_ssad_p50_ms", "exact_sssd_p50_ms",
+                            "dijkstra_sssd_p50_us", "dijkstra_ssad_p50_ms", "field_mean_rel_error"})
+        CHECK_THAT(r.out, Catch::Contains(std::string("\"") + key + "\":"));
+
+    const std::string png = f.dir.file("field.png"), ply = f.dir.file("field.ply");
+    r = test::runTool("render " + mesh + " --blob " + blob + " --source 3 --exact --size 120x90 --out " +
+                      test::quote(png) + " --ply " + test::quote(ply));
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    int w = 0, h = 0, channels = 0;
+    unsigned char* pixels = stbi_load(png.c_str(), &w, &h, &channels, 3);
+    REQUIRE(pixels != nullptr);
+    CHECK(w == 360);  // runtime, exact and error panels
+    CHECK(h > 90);
+    std::set<int> reds;
+    for (int i = 0; i < w * h; ++i) reds.insert(pixels[3 * i]);
+    stbi_image_free(pixels);
+    CHECK(reds.size() > 20);
+    Mesh coloured;
+    CHECK(loadMesh(ply, LoadOptions{}, coloured).ok);
+    CHECK(coloured.vertexCount() == f.mesh.vertexCount());
+
+    const std::string csv = f.dir.file("labels.csv");
+    r = test::runTool("voronoi " + mesh + " " + blob + " --seeds 6 --out " + test::quote(csv));
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("growing spheres") && Catch::Contains("multi-source labels"));
+    std::ifstream in(csv);
+    std::string line;
+    size_t lines = 0;
+    std::getline(in, line);
+    CHECK(line == "vertex,seed,seed_vertex,distance");
+    while (std::getline(in, line)) ++lines;
+    CHECK(lines == f.mesh.vertexCount());
+
+    // Bad input names the problem.
+    r = test::runTool("render " + mesh + " --source 999999 --out " + test::quote(png));
+    CHECK(r.status == 1);
+    CHECK_THAT(r.err, Catch::Contains("out of range"));
+    CHECK(test::runTool("voronoi " + mesh + " " + blob + " --out x.csv").status == 2);
+    CHECK(test::runTool("bench " + mesh).status == 2);
+}

@@ -1,4 +1,5 @@
 #include "bake.h"
+#include "vorogeo_baker.h"
 
 #include <chrono>
 #include <cmath>
@@ -129,6 +130,25 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
     if (progress) progress("writing blob", 1.0);
     clock.end(options.compress ? "compress" : "container");
     return blob;
+}
+
+}  // namespace vorogeo
+
+namespace vorogeo {
+
+BakeResult bake(const Mesh& mesh, const BakeOptions& options, const BakeProgress& progress,
+                const std::atomic<bool>* cancel) {
+    // Cancellation rides on the progress calls, which every stage makes regularly; the
+    // exception leaves TBB's parallel loops the way any exception does.
+    const BakeProgress checked = [&](const char* stage, double fraction) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) throw BakeCancelled();
+        if (progress) progress(stage, fraction);
+    };
+    if (cancel && cancel->load()) throw BakeCancelled();
+    BakeResult r;
+    r.blob = bakeMesh(mesh, options, r.report, checked);
+    if (cancel && cancel->load()) throw BakeCancelled();
+    return r;
 }
 
 }  // namespace vorogeo

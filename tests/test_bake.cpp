@@ -17,6 +17,7 @@
 #include "mesh_io.h"
 #include "patch_geodesics.h"
 #include "test_helpers.h"
+#include "vorogeo_baker.h"
 #include "vorogeo_container.h"
 
 using namespace vorogeo;
@@ -125,6 +126,32 @@ TEST_CASE("bake: the same blob bytes for 1 and 2 threads", "[bake]") {
     CHECK(one == two);
     o.seed = 7;  // and the seed matters
     CHECK(bakeWith(mesh, o, 2) != two);
+}
+
+TEST_CASE("bake library: vorogeo::bake reports progress, can be cancelled, gives bakeMesh's bytes", "[bake]") {
+    const Mesh mesh = smallBumpy();
+    std::vector<std::string> stages;
+    const BakeResult r = bake(mesh, BakeOptions(), [&](const char* stage, double fraction) {
+        CHECK(fraction >= 0.0);
+        CHECK(fraction <= 1.0);
+        if (stages.empty() || stages.back() != stage) stages.push_back(stage);
+    });
+    CHECK(stages.size() >= 4);
+    CHECK(r.report.blobBytes == r.blob.size());
+    BakeReport report;
+    CHECK(bakeMesh(mesh, BakeOptions(), report) == r.blob);
+
+    // Cancelled at the third progress step: BakeCancelled, whatever stage that is.
+    std::atomic<bool> cancel{false};
+    int calls = 0;
+    CHECK_THROWS_AS(bake(mesh, BakeOptions(), [&](const char*, double) { cancel = ++calls >= 3; }, &cancel),
+                    BakeCancelled);
+    CHECK(calls == 3);
+    cancel = true;
+    CHECK_THROWS_AS(bake(mesh, BakeOptions(), BakeProgress(), &cancel), BakeCancelled);
+    BakeOptions bad;
+    bad.compressionLevel = 99;
+    CHECK_THROWS_AS(bake(mesh, bad), std::invalid_argument);
 }
 
 TEST_CASE("bake: --no-compress stores the same flatbuffer, uncompressed", "[bake]") {

@@ -41,6 +41,15 @@
 #define VG_API
 #endif
 
+/* Library version (this header's). CMake checks that it matches the project version. */
+#define VG_VERSION_MAJOR 0
+#define VG_VERSION_MINOR 1
+#define VG_VERSION_PATCH 0
+#define VG_VERSION_NUMBER ((VG_VERSION_MAJOR << 16) | (VG_VERSION_MINOR << 8) | VG_VERSION_PATCH)
+/* Blob format this library reads. Independent of the library version: it changes only
+ * when the bytes of a .vgeo file change meaning (docs/FORMAT.md). */
+#define VG_BLOB_FORMAT_VERSION 2
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -71,6 +80,8 @@ VG_API const char* vg_status_string(vg_status status);
 VG_API const char* vg_version_string(void);
 /* Library version as (major << 16) | (minor << 8) | patch. */
 VG_API unsigned vg_version_number(void);
+/* Blob format version the library reads (VG_BLOB_FORMAT_VERSION of the library's build). */
+VG_API unsigned vg_blob_format_version(void);
 /* 1 when this build opens zstd-compressed blobs, 0 when built without zstd. */
 VG_API int vg_supports_compression(void);
 

@@ -1,5 +1,6 @@
 // Status strings and version numbers.
 #include "vorogeo.h"
+#include "vorogeo_container.h"
 
 extern "C" const char* vg_status_string(vg_status status) {
     switch (status) {
@@ -24,6 +25,11 @@ extern "C" const char* vg_status_string(vg_status status) {
 
 extern "C" const char* vg_version_string(void) { return VG_VERSION_STRING; }
 
-extern "C" unsigned vg_version_number(void) {
-    return (VG_VERSION_MAJOR_ << 16) | (VG_VERSION_MINOR_ << 8) | VG_VERSION_PATCH_;
-}
+extern "C" unsigned vg_version_number(void) { return VG_VERSION_NUMBER; }
+
+extern "C" unsigned vg_blob_format_version(void) { return VG_FORMAT_VERSION; }
+
+static_assert(VG_BLOB_FORMAT_VERSION == VG_FORMAT_VERSION, "public and container format versions differ");
+static_assert(VG_VERSION_MAJOR == VG_VERSION_MAJOR_ && VG_VERSION_MINOR == VG_VERSION_MINOR_ &&
+                  VG_VERSION_PATCH == VG_VERSION_PATCH_,
+              "vorogeo.h's version macros differ from the CMake project version");

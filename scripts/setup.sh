@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(cmake g++ make libopenmesh-dev libzstd-dev libflatbuffers-dev flatbuffers-compiler
-          libtbb-dev catch2 libstb-dev)
+          libtbb-dev catch2 libstb-dev pkg-config mono-mcs mono-runtime python3)
 
 missing=()
 for p in "${packages[@]}"; do

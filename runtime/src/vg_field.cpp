@@ -10,12 +10,32 @@ namespace {
 
 using namespace vg;
 
+// Lowers best[0..n) to base + the packed row entries k0.. (interior slots of a patch),
+// remembering which reached node gave each. Entries are decoded two per three bytes.
+inline void lowerRow(const uint8_t* packed, uint64_t k0, uint32_t n, float base, float scale, uint32_t node,
+                     float* best, uint32_t* bestNode) {
+    auto take = [&](uint32_t q, uint32_t j) {
+        const float d = q == kNoPathQuantum ? __builtin_inff() : base + float(q) * scale;
+        const bool lower = d < best[j];
+        best[j] = lower ? d : best[j];
+        bestNode[j] = lower ? node : bestNode[j];
+    };
+    uint32_t j = 0;
+    if ((k0 & 1) && n > 0) take(quantum(packed, k0), j++);
+    const uint8_t* b = packed + 3 * ((k0 + j) >> 1);
+    for (; j + 1 < n; j += 2, b += 3) {
+        take(uint32_t(b[0]) | ((uint32_t(b[1]) & 0xFu) << 8), j);
+        take((uint32_t(b[1]) >> 4) | (uint32_t(b[2]) << 4), j + 1);
+    }
+    if (j < n) take(quantum(packed, k0 + j), j);
+}
+
 // The path to an interior vertex may cross the border on an edge next to its best node
 // rather than at the node. The source side of each such edge (its unfolded source point)
 // is the same for every vertex of the patch, so it is computed once per edge here.
+// (Crossing edges join nodes of the best node's source, so the nearest source stays.)
 void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_workspace& ws,
-                       uint32_t reached, float* out) {
-    // (Crossing edges join nodes of the best node's source, so the nearest source stays.)
+                       uint32_t reached) {
     const Patch& p = g.second[patchIndex];
     const uint32_t* slots = g.slots + p.slotBegin;
     CrossingEdge* edges = ws.patchEdges;
@@ -31,21 +51,27 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, const Frontier& f
             if (!nodeActive(g, w) || !f.labelled(w) || f.route[w].origin != f.route[u].origin) continue;
             for (uint32_t m = g.nodeSecondBegin[w]; m < g.nodeSecondBegin[w + 1]; ++m) {
                 if (g.nodeSecond[m].patch != patchIndex) continue;
+                const uint32_t slot = g.nodeSecond[m].slot;
                 const float b = f.label[w].dist, l = euclidean(g, g.nodeVertex[u], g.nodeVertex[w]);
                 UnfoldedPoint source;
-                if (unfoldPoint(a, b, l, source)) edges[count++] = CrossingEdge{g.nodeSecond[m].slot, l, b, source};
+                if (unfoldPoint(a, b, l, source))
+                    edges[count++] = CrossingEdge{rowStart(p, slot) - (slot + 1) + p.nodeCount, l, b, source};
             }
         }
     }
     begin[reached] = count;
-    for (uint32_t j = p.nodeCount; j < p.slotCount; ++j) {
+    const uint32_t interior = p.slotCount - p.nodeCount;
+    for (uint32_t j = 0; j < interior; ++j) {
         const uint32_t r = ws.patchBestNode[j];
-        if (r == kNone) continue;
-        const float a = ws.patchNodeDistance[r], c = entry(p, g.secondDistances, ws.patchNodeSlot[r], j);
-        float& o = out[slots[j]];
+        if (r == kNone || begin[r] == begin[r + 1]) continue;
+        const float a = ws.patchNodeDistance[r];
+        const float c = float(quantum(g.secondDistances, ws.patchNodeRow[r] + j)) * p.scale;
+        float& o = ws.patchBest[j];
         for (uint32_t k = begin[r]; k < begin[r + 1]; ++k) {
             const CrossingEdge& E = edges[k];
-            const float e = entry(p, g.secondDistances, E.slot, j);
+            const uint32_t q = quantum(g.secondDistances, E.row + j);
+            if (q == kNoPathQuantum) continue;
+            const float e = float(q) * p.scale;
             UnfoldedPoint target;
             if (!unfoldPoint(c, e, E.length, target)) continue;
             const float d = crossingLength(E.source, target, E.length, a + c, E.b + e);
@@ -59,7 +85,13 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
                uint32_t* nearest) {
     const Patch& p = g.second[patchIndex];
     const uint32_t* slots = g.slots + p.slotBegin;
-    for (uint32_t j = p.nodeCount; j < p.slotCount; ++j) ws.patchBestNode[j] = kNone;
+    const uint32_t interior = p.slotCount - p.nodeCount;
+    float* best = ws.patchBest;
+    uint32_t* bestNode = ws.patchBestNode;
+    for (uint32_t j = 0; j < interior; ++j) {
+        best[j] = __builtin_inff();
+        bestNode[j] = kNone;
+    }
     uint32_t reached = 0;
     for (uint32_t i = 0; i < p.nodeCount; ++i) {
         const uint32_t n = slots[i];
@@ -68,39 +100,33 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
         if (nodeActive(g, n) && f.labelled(n) && f.route[n].via != patchIndex) {
             ws.patchNodeSlot[reached] = i;
             ws.patchNodeDistance[reached] = f.label[n].dist;
+            ws.patchNodeRow[reached] = rowStart(p, i) - (i + 1) + p.nodeCount;
             ++reached;
         }
     }
-    for (uint32_t r = 0; r < reached; ++r) {
-        const uint32_t i = ws.patchNodeSlot[r];
-        const float base = ws.patchNodeDistance[r];
-        const uint64_t row = rowStart(p, i) - (i + 1);
-        // Merged-away nodes (slots before the interior ones) take the node rows as well.
-        for (uint32_t j = 0; j < p.nodeCount; ++j) {
-            const uint32_t n = slots[j];
-            if (nodeActive(g, n)) continue;
-            const float d = base + entry(p, g.secondDistances, i, j);
-            float& o = out[g.nodeVertex[n]];
+    // Merged-away nodes (slots before the interior ones) take the best reached node too.
+    for (uint32_t j = 0; j < p.nodeCount; ++j) {
+        const uint32_t n = slots[j];
+        if (nodeActive(g, n)) continue;
+        float& o = out[g.nodeVertex[n]];
+        for (uint32_t r = 0; r < reached; ++r) {
+            const float d = ws.patchNodeDistance[r] + entry(p, g.secondDistances, ws.patchNodeSlot[r], j);
             if (d < o) {
                 o = d;
-                if (nearest) nearest[g.nodeVertex[n]] = f.route[slots[i]].origin;
-            }
-        }
-        for (uint32_t j = p.nodeCount; j < p.slotCount; ++j) {
-            const uint32_t q = quantum(g.secondDistances, row + j);
-            if (q == kNoPathQuantum) continue;
-            const float d = base + float(q) * p.scale;
-            float& o = out[slots[j]];
-            if (d < o) {
-                o = d;
-                ws.patchBestNode[j] = r;
+                if (nearest) nearest[g.nodeVertex[n]] = f.route[slots[ws.patchNodeSlot[r]]].origin;
             }
         }
     }
-    unfoldAtBestNodes(g, patchIndex, f, ws, reached, out);
-    if (nearest)
-        for (uint32_t j = p.nodeCount; j < p.slotCount; ++j)
-            if (ws.patchBestNode[j] != kNone) nearest[slots[j]] = f.route[slots[ws.patchNodeSlot[ws.patchBestNode[j]]]].origin;
+    for (uint32_t r = 0; r < reached; ++r)
+        lowerRow(g.secondDistances, ws.patchNodeRow[r], interior, ws.patchNodeDistance[r], p.scale, r, best, bestNode);
+    unfoldAtBestNodes(g, patchIndex, f, ws, reached);
+    for (uint32_t j = 0; j < interior; ++j) {
+        const uint32_t v = slots[p.nodeCount + j];
+        if (best[j] < out[v]) {
+            out[v] = best[j];
+            if (nearest) nearest[v] = f.route[slots[ws.patchNodeSlot[bestNode[j]]]].origin;
+        }
+    }
 }
 
 }  // namespace

@@ -45,6 +45,8 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.vertexStamp = L.take<uint32_t>(V);
     o.patchNodeDistance = L.take<float>(kMaxPatchSlots);
     o.patchNodeSlot = L.take<uint32_t>(kMaxPatchSlots);
+    o.patchNodeRow = L.take<uint64_t>(kMaxPatchSlots);
+    o.patchBest = L.take<float>(kMaxPatchSlots);
     o.patchBestNode = L.take<uint32_t>(kMaxPatchSlots);
     o.patchEdgeBegin = L.take<uint32_t>(kMaxPatchSlots + 1);
     o.patchEdges = L.take<vg::CrossingEdge>(vg::kMaxPatchEdges);

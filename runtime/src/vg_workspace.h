@@ -16,7 +16,7 @@ constexpr uint32_t kMaxPatchEdges = 4096;  // border edges unfolded per patch (m
 // neighbour's slot, the edge length, the neighbour's distance and the unfolded source
 // point (the same for every vertex of the patch, so computed once).
 struct CrossingEdge {
-    uint32_t slot;
+    uint64_t row;  // packed index of the neighbour's entry for the patch's first interior slot
     float length, b;
     UnfoldedPoint source;
 };
@@ -127,9 +127,11 @@ struct vg_workspace {
     uint32_t* vertexNextTarget;    // per vertex: next target in the same patch
     uint32_t* vertexTargetIndex;   // per vertex: its first index in the caller's target list
     uint32_t* vertexStamp;
-    float* patchNodeDistance;      // per slot of one patch (vg_distance_field); 65536 entries
+    float* patchNodeDistance;      // per reached node of one patch (vg_distance_field); 65536 entries
     uint32_t* patchNodeSlot;
-    uint32_t* patchBestNode;       // per slot of one patch: index of its best node so far
+    uint64_t* patchNodeRow;        // per reached node: packed index of its first interior entry
+    float* patchBest;              // per interior slot of one patch: best distance so far
+    uint32_t* patchBestNode;       // per interior slot of one patch: index of its best node
     uint32_t* patchEdgeBegin;      // per reached node of one patch: first of its crossing edges
     vg::CrossingEdge* patchEdges;
 };

@@ -657,6 +657,16 @@ size_t ExactWorkspace::memoryBytes() const {
 
 // ------------------------------------------------------------------ batch and baseline
 
+std::vector<double> exactDistancesFrom(const Mesh& mesh, uint32_t source) {
+    ExactGeodesic geo(mesh);
+    ExactWorkspace ws;
+    ExactQuery q;
+    q.sources.push_back(GeodesicSource::atVertex(source));
+    std::vector<double> d;
+    ws.run(geo, q, d);
+    return d;
+}
+
 std::vector<std::vector<double>> exactDistancesBatch(const ExactGeodesic& geo,
                                                      const std::vector<uint32_t>& sources,
                                                      double maxDistance) {

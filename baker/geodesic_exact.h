@@ -161,6 +161,10 @@ private:
     ExactStats stats_;
 };
 
+// The exact distance from one source vertex to every vertex of the whole mesh (+inf where
+// unreachable): a one-off run with its own workspace.
+std::vector<double> exactDistancesFrom(const Mesh& mesh, uint32_t source);
+
 // Runs independent single-source problems in parallel (TBB), one workspace per worker.
 // Returns one distance array per source vertex.
 std::vector<std::vector<double>> exactDistancesBatch(const ExactGeodesic& geo,

@@ -10,15 +10,7 @@ using namespace vorogeo;
 
 namespace {
 
-std::vector<double> field(const Mesh& mesh, uint32_t source) {
-    ExactGeodesic geo(mesh);
-    ExactWorkspace ws;
-    ExactQuery q;
-    q.sources.push_back(GeodesicSource::atVertex(source));
-    std::vector<double> d;
-    ws.run(geo, q, d);
-    return d;
-}
+std::vector<double> field(const Mesh& mesh, uint32_t source) { return exactDistancesFrom(mesh, source); }
 
 double maxRelativeError(const std::vector<double>& got, const std::vector<double>& want) {
     double worst = 0;

@@ -45,19 +45,9 @@ Fixture& fixture() {
     return f;
 }
 
-std::vector<double> exactField(const Mesh& mesh, uint32_t source) {
-    ExactGeodesic geo(mesh);
-    ExactWorkspace ws;
-    ExactQuery q;
-    q.sources.push_back(GeodesicSource::atVertex(source));
-    std::vector<double> d;
-    ws.run(geo, q, d);
-    return d;
-}
-
 Panel fieldPanel(const std::vector<double>& field) {
     Panel p;
-    double maxFinite = 0;
+    const double maxFinite = largestFinite(field);
     p.vertexColour = colourField(field, maxFinite);
     p.isoValue = field;
     p.isoSpacing = maxFinite / 10;
@@ -69,7 +59,7 @@ Panel fieldPanel(const std::vector<double>& field) {
 
 TEST_CASE("render: panels have the requested size and follow the field", "[tools][render]") {
     const Mesh& mesh = fixture().mesh;
-    const Image a = renderPanels(mesh, {fieldPanel(exactField(mesh, 0))}, 200, 150, View{});
+    const Image a = renderPanels(mesh, {fieldPanel(exactDistancesFrom(mesh, 0))}, 200, 150, View{});
     REQUIRE(a.width == 200);
     REQUIRE(a.height > 150);  // plus the caption strip
     std::set<uint32_t> colours;
@@ -77,8 +67,8 @@ TEST_CASE("render: panels have the requested size and follow the field", "[tools
     CHECK(colours.size() > 100);  // shading, colour ramp and isolines, not a flat fill
 
     // Another source shades other pixels; the same field shades the same ones.
-    const Image b = renderPanels(mesh, {fieldPanel(exactField(mesh, 400))}, 200, 150, View{});
-    const Image again = renderPanels(mesh, {fieldPanel(exactField(mesh, 0))}, 200, 150, View{});
+    const Image b = renderPanels(mesh, {fieldPanel(exactDistancesFrom(mesh, 400))}, 200, 150, View{});
+    const Image again = renderPanels(mesh, {fieldPanel(exactDistancesFrom(mesh, 0))}, 200, 150, View{});
     size_t differ = 0;
     for (size_t i = 0; i < a.pixels.size(); ++i)
         differ += a.pixels[i].r != b.pixels[i].r || a.pixels[i].g != b.pixels[i].g || a.pixels[i].b != b.pixels[i].b;

@@ -1,5 +1,7 @@
 #include "cli.h"
 
+#include <cstdio>
+
 #include <cerrno>
 #include <cstdlib>
 #include <sstream>
@@ -60,6 +62,20 @@ double Args::number(const std::string& name, double fallback) const {
     double v = std::strtod(s, &end);
     if (errno || end == s || *end) throw UsageError(name + " expects a number, got '" + it->second + "'");
     return v;
+}
+
+void pictureOptions(const Args& args, int& width, int& height, double& yawDegrees, double& pitchDegrees) {
+    if (args.has("--size")) {
+        const std::string t = args.str("--size");
+        if (std::sscanf(t.c_str(), "%dx%d", &width, &height) != 2 || width < 16 || height < 16 || width > 8192 ||
+            height > 8192)
+            throw UsageError("--size must be WxH with each side in 16..8192, got '" + t + "'");
+    }
+    if (args.has("--view")) {
+        const std::string t = args.str("--view");
+        if (std::sscanf(t.c_str(), "%lf,%lf", &yawDegrees, &pitchDegrees) != 2)
+            throw UsageError("--view must be YAW,PITCH in degrees, got '" + t + "'");
+    }
 }
 
 std::vector<long long> parseIntegerList(const std::string& text, const std::string& what) {

@@ -35,6 +35,10 @@ private:
     std::map<std::string, std::string> values_;
 };
 
+// Picture options of render and voronoi: --size WxH (each side 16..8192, default kept when
+// absent) and --view YAW,PITCH in degrees (default 0,0). Malformed values are UsageErrors.
+void pictureOptions(const Args& args, int& width, int& height, double& yawDegrees, double& pitchDegrees);
+
 // Parses "a,b,c" integer lists such as vertex ids.
 std::vector<long long> parseIntegerList(const std::string& text, const std::string& what);
 

@@ -25,21 +25,6 @@ const char* kUsage =
     "  is drawn. --ply writes the mesh coloured by the first field. --size is per panel\n"
     "  (default 640x640); --view turns the mesh (degrees, default 0,0: looking down -z).\n";
 
-std::vector<double> exactField(const Mesh& mesh, uint32_t source) {
-    ExactGeodesic geo(mesh);
-    ExactWorkspace ws;
-    ExactQuery q;
-    q.sources.push_back(GeodesicSource::atVertex(source));
-    std::vector<double> dist;
-    ws.run(geo, q, dist);
-    return dist;
-}
-
-void parseSize(const std::string& text, int& w, int& h) {
-    if (std::sscanf(text.c_str(), "%dx%d", &w, &h) != 2 || w < 16 || h < 16 || w > 8192 || h > 8192)
-        throw cli::UsageError("--size must be WxH with each side in 16..8192, got '" + text + "'");
-}
-
 }  // namespace
 
 int runRender(int argc, char** argv) {
@@ -53,13 +38,8 @@ int runRender(int argc, char** argv) {
     if (!args.has("--source")) throw cli::UsageError("--source V is required");
     if (!args.has("--out") && !args.has("--ply")) throw cli::UsageError("nothing to write: give --out and/or --ply");
     int width = 640, height = 640;
-    if (args.has("--size")) parseSize(args.str("--size"), width, height);
     View view;
-    if (args.has("--view")) {
-        const std::string v = args.str("--view");
-        if (std::sscanf(v.c_str(), "%lf,%lf", &view.yawDegrees, &view.pitchDegrees) != 2)
-            throw cli::UsageError("--view must be YAW,PITCH in degrees, got '" + v + "'");
-    }
+    cli::pictureOptions(args, width, height, view.yawDegrees, view.pitchDegrees);
     const long long isolines = args.integer("--isolines", 20);
     if (isolines < 0 || isolines > 1000) throw cli::UsageError("--isolines must be in 0..1000");
     const double errorScale = args.number("--error-scale", 1.0) / 100.0;
@@ -95,21 +75,16 @@ int runRender(int argc, char** argv) {
     }
     if (!args.has("--blob") || args.flag("--exact")) {
         Stopwatch watch;
-        exact = exactField(mesh, uint32_t(source));
+        exact = exactDistancesFrom(mesh, uint32_t(source));
         std::printf("exact field: %.2f ms\n", watch.seconds() * 1e3);
     }
 
     // One colour scale and one isoline spacing for every panel: the exact field's when there is one.
-    double maxFinite = 0;
     std::vector<Panel> panels;
-    const std::vector<double>& reference = exact.empty() ? runtime : exact;
-    colourField(reference, maxFinite);
+    const double maxFinite = largestFinite(exact.empty() ? runtime : exact);
     auto fieldPanel = [&](const std::vector<double>& field, const std::string& caption) {
         Panel p;
-        p.vertexColour.reserve(field.size());
-        for (double d : field)
-            p.vertexColour.push_back(std::isfinite(d) ? distanceColour(maxFinite > 0 ? d / maxFinite : 0)
-                                                      : unreachableColour());
+        p.vertexColour = colourField(field, maxFinite);
         p.isoValue = field;
         p.isoSpacing = isolines > 0 ? maxFinite / double(isolines) : 0;
         p.caption = caption;

@@ -43,13 +43,8 @@ int runVoronoi(int argc, char** argv) {
     const double growth = args.number("--growth", 0.25);
     if (!(growth > 0.01 && growth <= 10)) throw cli::UsageError("--growth must be in (0.01, 10]");
     int width = 640, height = 640;
-    if (args.has("--size") && (std::sscanf(args.str("--size").c_str(), "%dx%d", &width, &height) != 2 || width < 16 ||
-                               height < 16 || width > 8192 || height > 8192))
-        throw cli::UsageError("--size must be WxH with each side in 16..8192");
     View view;
-    if (args.has("--view") &&
-        std::sscanf(args.str("--view").c_str(), "%lf,%lf", &view.yawDegrees, &view.pitchDegrees) != 2)
-        throw cli::UsageError("--view must be YAW,PITCH in degrees");
+    cli::pictureOptions(args, width, height, view.yawDegrees, view.pitchDegrees);
 
     Mesh mesh;
     if (!loadMeshForCommand("voronoi", args.positional()[0], args.flag("--repair"), mesh)) return 1;

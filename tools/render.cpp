@@ -192,14 +192,18 @@ Rgb categoryColour(uint32_t k) {
 
 Rgb unreachableColour() { return Rgb{150, 150, 150}; }
 
-std::vector<Rgb> colourField(const std::vector<double>& field, double& maxFinite) {
-    maxFinite = 0;
+double largestFinite(const std::vector<double>& field) {
+    double m = 0;
     for (double d : field)
-        if (std::isfinite(d)) maxFinite = std::max(maxFinite, d);
+        if (std::isfinite(d)) m = std::max(m, d);
+    return m;
+}
+
+std::vector<Rgb> colourField(const std::vector<double>& field, double scale) {
     std::vector<Rgb> colours;
     colours.reserve(field.size());
     for (double d : field)
-        colours.push_back(std::isfinite(d) ? distanceColour(maxFinite > 0 ? d / maxFinite : 0) : unreachableColour());
+        colours.push_back(std::isfinite(d) ? distanceColour(scale > 0 ? d / scale : 0) : unreachableColour());
     return colours;
 }
 

@@ -34,7 +34,9 @@ Rgb errorColour(double t);       // white (no error) to dark red
 Rgb categoryColour(uint32_t k);  // well-separated colours for labels
 Rgb unreachableColour();         // grey for +inf distances
 
-// Per-vertex colours of a distance field, scaled to its largest finite value.
-std::vector<Rgb> colourField(const std::vector<double>& field, double& maxFinite);
+// Largest finite value of a field (0 when none).
+double largestFinite(const std::vector<double>& field);
+// Per-vertex colours of a distance field, `scale` mapping to the far end of the ramp.
+std::vector<Rgb> colourField(const std::vector<double>& field, double scale);
 
 }  // namespace vorogeo::tools

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "bake_limits.h"
 #include "blob_writer.h"
 #include "mesh_stats.h"
 #include "partition.h"
@@ -57,8 +58,13 @@ void validate(const Mesh& mesh, const BakeOptions& o) {
 }  // namespace
 
 std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, BakeReport& report,
-                              const BakeProgress& progress) {
+                              const BakeProgress& reportProgress) {
     validate(mesh, options);
+    checkBakeLimits(verticesUsedByFaces(mesh), options);
+    const BakeProgress progress = [&](const char* stage, double fraction) {
+        checkMemoryDuringBake(options, stage);
+        if (reportProgress) reportProgress(stage, fraction);
+    };
     report = BakeReport();
     report.vertices = mesh.vertexCount();
     report.faces = mesh.faceCount();

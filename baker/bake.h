@@ -22,6 +22,7 @@ struct BakeOptions {
     bool compress = true;         // zstd frame, else the flatbuffer as is (zero-copy)
     int compressionLevel = 9;
     uint32_t landmarks = 12;      // A* landmarks stored in the blob (0: straight-line bound only)
+    uint64_t maxMemoryBytes = 0;  // refuse up front / stop when a bake needs more (0: no limit)
 };
 
 // The automatic pruning threshold (fraction of the bounding-box diagonal).
@@ -50,7 +51,9 @@ struct BakeReport {
 using BakeProgress = std::function<void(const char* stage, double fraction)>;
 
 // Bakes a prepared mesh (connectivity built). Throws std::invalid_argument for bad options
-// (naming the option and the allowed range), std::runtime_error if the mesh cannot be baked.
+// (naming the option and the allowed range), BakeLimitError (bake_limits.h) when the blob
+// or the memory would exceed a limit (checked before the work starts, and memory again at
+// every progress step), std::runtime_error if the mesh cannot be baked.
 std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, BakeReport& report,
                               const BakeProgress& progress = BakeProgress());
 

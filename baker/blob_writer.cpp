@@ -10,6 +10,7 @@
 #include <unistd.h>
 #include <zstd.h>
 
+#include "bake_limits.h"
 #include "mesh_stats.h"
 #include "vorogeo_container.h"
 #include "vorogeo_generated.h"
@@ -179,6 +180,16 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     std::vector<uint8_t> flags(N, 0);
     for (size_t n = 0; n < N; ++n) flags[n] = secondInactive[nodeVertex[n]] ? 1 : 0;
 
+    // Exactly what the vectors take (plus headers and padding), before flatbuffers is asked
+    // to build something its 32-bit offsets cannot address.
+    auto bytesOf = [](const auto& v) { return uint64_t(v.size()) * sizeof(v[0]) + 16; };
+    checkFlatbufferSize(bytesOf(positions) + bytesOf(vertexPatch) + bytesOf(vertexSlot) + bytesOf(nodeVertex) +
+                            bytesOf(flags) + bytesOf(secondBegin) + bytesOf(secondAll) + bytesOf(firstBegin) +
+                            bytesOf(firstAll) + bytesOf(edgeBegin) + bytesOf(edgeNeighbours) +
+                            bytesOf(landmarks.vertices) + bytesOf(landmarks.scales) + bytesOf(landmarks.nodeValues) +
+                            bytesOf(secondRecords) + bytesOf(firstRecords) + bytesOf(slots) +
+                            bytesOf(secondDist.bytes) + bytesOf(firstDist.bytes) + 4096,
+                        V);
     flatbuffers::FlatBufferBuilder b(size_t(64) << 20);
     auto posV = b.CreateVector(positions);
     auto vpV = b.CreateVector(vertexPatch);

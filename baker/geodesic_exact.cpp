@@ -691,7 +691,8 @@ void edgeDijkstra(const Mesh& mesh, uint32_t source, std::vector<double>& distan
     distances[source] = 0.0;
     queue.push({0.0, source});
     while (!queue.empty()) {
-        auto [d, v] = queue.top();
+        const double d = queue.top().first;  // not a structured binding: the lambda below captures it
+        const uint32_t v = queue.top().second;
         queue.pop();
         if (d > distances[v]) continue;
         if (int64_t(v) == target) break;

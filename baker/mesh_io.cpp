@@ -248,11 +248,17 @@ LoadReport prepareMesh(const std::string& name, const LoadOptions& options, Mesh
 
 LoadReport loadMesh(const std::string& path, const LoadOptions& options, Mesh& out) {
     LoadReport report;
-    std::string data, error;
+    std::string data;
     if (!readFile(path, data, report.error)) {
         report.error = path + ": " + report.error;
         return report;
     }
+    return loadMeshFromMemory(path, std::move(data), options, out);
+}
+
+LoadReport loadMeshFromMemory(const std::string& path, std::string data, const LoadOptions& options, Mesh& out) {
+    LoadReport report;
+    std::string error;
     const std::string ext = lowerExtension(path);
     Format format = formatFromExtension(ext);
     const Format sniffed = formatFromContent(data);

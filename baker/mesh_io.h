@@ -25,6 +25,9 @@ struct LoadReport {
 // Polygons are triangulated, then the mesh goes through prepareMesh(). Face numbers in
 // messages are the file's (0-based) face records. On failure `out` is unspecified.
 LoadReport loadMesh(const std::string& path, const LoadOptions& options, Mesh& out);
+// The same for a file's content already in memory (an asset pack); `path` gives the
+// extension that selects the format and names the mesh in messages.
+LoadReport loadMeshFromMemory(const std::string& path, std::string data, const LoadOptions& options, Mesh& out);
 
 // Validation, optional repair and buildConnectivity() for an in-memory triangle soup
 // (positions + faces). `name` prefixes error messages. Unreferenced vertices are kept

@@ -152,7 +152,11 @@ void localDijkstra(const LocalGraph& g, uint32_t source, const std::vector<uint3
 }  // namespace
 
 void composeFirstLayer(const Mesh& mesh, const Partition& partition, const std::vector<PatchMatrix>& second,
-                       std::vector<PatchMatrix>& first) {
+                       std::vector<PatchMatrix>& first, const StageProgress& progress) {
+    const char* stage = "first-layer overlay";
+    std::mutex progressMutex;
+    size_t done = 0;
+    if (progress) progress(stage, 0.0);
     const std::vector<uint8_t> sharing = patchesPerVertex(mesh, partition.faceFirst);
     std::vector<std::vector<uint32_t>> children(partition.first.size());
     for (uint32_t p = 0; p < partition.second.size(); ++p) children[partition.second[p].parent].push_back(p);
@@ -198,6 +202,10 @@ void composeFirstLayer(const Mesh& mesh, const Partition& partition, const std::
             targets.assign(rowLocal.begin() + i + 1, rowLocal.end());
             localDijkstra(g, rowLocal[i], targets, scratch);
             for (uint32_t j = i + 1; j < m.rows; ++j) m.upper[upperIndex(m.rows, i, j)] = scratch.dist[rowLocal[j]];
+        }
+        if (progress) {
+            std::lock_guard<std::mutex> lock(progressMutex);
+            progress(stage, double(++done) / double(first.size()));
         }
     });
 }
@@ -246,7 +254,7 @@ PatchGeodesics computePatchGeodesics(const Mesh& mesh, const Partition& partitio
         computeLayer(mesh, partition.first, partition.faceFirst, true, options, "first-layer geodesics", progress,
                      result.first, result.stats.sourceRuns);
     else
-        composeFirstLayer(mesh, partition, result.second, result.first);
+        composeFirstLayer(mesh, partition, result.second, result.first, progress);
     result.stats.firstLayerSeconds = secondsSince(t0);
     for (const auto* layer : {&result.first, &result.second})
         for (const PatchMatrix& m : *layer) result.stats.storedDistances += m.upper.size();

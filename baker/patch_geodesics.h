@@ -74,8 +74,9 @@ using StageProgress = std::function<void(const char* stage, double fraction)>;
 // Runs the precomputation for both layers with TBB. Progress calls never overlap.
 // First-layer node x node distances as shortest paths over the second-layer node graphs
 // (their node x node blocks) of the second-layer patches inside each first-layer patch.
+// Reports progress per first-layer patch as "first-layer overlay".
 void composeFirstLayer(const Mesh& mesh, const Partition& partition, const std::vector<PatchMatrix>& second,
-                       std::vector<PatchMatrix>& first);
+                       std::vector<PatchMatrix>& first, const StageProgress& progress = StageProgress());
 
 PatchGeodesics computePatchGeodesics(const Mesh& mesh, const Partition& partition,
                                      const PatchGeodesicsOptions& options,

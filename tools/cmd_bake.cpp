@@ -1,5 +1,7 @@
 // vorogeo bake: mesh -> .vgeo blob (partition, patch geodesics, overlay, pruning, blob).
+#include <atomic>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
@@ -10,7 +12,9 @@
 #include <unistd.h>
 
 #include "bake.h"
+#include "bake_limits.h"
 #include "blob_writer.h"
+#include "vorogeo_baker.h"
 #include "cli.h"
 #include "timing.h"
 #include "tool_mesh.h"
@@ -23,7 +27,7 @@ const char* kUsage =
     "usage: vorogeo bake MESH -o OUT.vgeo [--n1 N] [--n2 N] [--delta F] [--seed S] [--threads N]\n"
     "                    [--no-compress] [--report FILE.json] [--margin-rings R] [--exact-first-layer]\n"
     "                    [--landmarks K]\n"
-    "                    [--repair] [--quiet]\n"
+    "                    [--max-memory SIZE] [--repair] [--quiet]\n"
     "  Precomputes the two-layer patch graph of MESH and writes it as a blob for the runtime.\n"
     "  --n1       first-layer patches (default: one per ~3,000 vertices)\n"
     "  --n2       second-layer patches per first-layer patch (default: one per ~100 vertices)\n"
@@ -35,7 +39,72 @@ const char* kUsage =
     "  --report   write a JSON report (times, sizes, graph, peak memory)\n"
     "  --margin-rings  rings of faces around each patch for its geodesics (default 1)\n"
     "  --landmarks     landmarks for the query's A* lower bounds, 0-64 (default 12)\n"
-    "  --exact-first-layer  first-layer distances by exact runs, as the thesis (much slower)\n";
+    "  --exact-first-layer  first-layer distances by exact runs, as the thesis (much slower)\n"
+    "  --max-memory  refuse the bake up front if it would need more, stop it if it does\n"
+    "             (e.g. 8G, 512M; default: the machine's physical memory)\n"
+    "  Ctrl-C (SIGINT) or SIGTERM stops the bake at its next step; nothing is written.\n";
+
+// Set by SIGINT/SIGTERM/SIGHUP; the bake polls it at every progress step. A second signal
+// while stopping kills the process the default way.
+std::atomic<bool> gInterrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
+
+extern "C" void onInterrupt(int signal) {
+    if (gInterrupted.exchange(true)) {
+        std::signal(signal, SIG_DFL);
+        std::raise(signal);
+        return;
+    }
+    const char message[] = "\nvorogeo bake: interrupted, stopping (again to kill)\n";
+    const ssize_t ignored = ::write(2, message, sizeof message - 1);
+    (void)ignored;
+}
+
+// Installs onInterrupt for the lifetime of the bake and restores the previous handlers.
+class InterruptGuard {
+public:
+    InterruptGuard() {
+        struct sigaction action {};
+        action.sa_handler = onInterrupt;
+        sigemptyset(&action.sa_mask);
+        for (int i = 0; i < 3; ++i) sigaction(kSignals[i], &action, &previous_[i]);
+    }
+    ~InterruptGuard() {
+        for (int i = 0; i < 3; ++i) sigaction(kSignals[i], &previous_[i], nullptr);
+    }
+
+private:
+    static constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGHUP};
+    struct sigaction previous_[3];
+};
+
+// "8G", "512M", "64k", "1000000": bytes (binary multiples).
+uint64_t parseSize(const std::string& text) {
+    size_t used = 0;
+    double value = 0;
+    try {
+        value = std::stod(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    std::string unit = text.substr(used);
+    if (!unit.empty() && (unit.back() == 'B' || unit.back() == 'b')) unit.pop_back();
+    if (unit.size() == 2 && (unit[1] == 'i')) unit.pop_back();
+    double scale = 1;
+    if (unit == "k" || unit == "K") scale = 1024.0;
+    else if (unit == "m" || unit == "M") scale = 1024.0 * 1024;
+    else if (unit == "g" || unit == "G") scale = 1024.0 * 1024 * 1024;
+    else if (unit == "t" || unit == "T") scale = 1024.0 * 1024 * 1024 * 1024;
+    else if (!unit.empty()) used = 0;
+    if (used == 0 || !(value > 0) || !std::isfinite(value * scale) || value * scale > 1e18)
+        throw cli::UsageError("--max-memory must be a size such as 8G, 512M or 1000000 (bytes), got '" + text + "'");
+    return uint64_t(value * scale);
+}
+
+uint64_t physicalMemoryBytes() {
+    const long pages = ::sysconf(_SC_PHYS_PAGES), pageSize = ::sysconf(_SC_PAGESIZE);
+    return pages > 0 && pageSize > 0 ? uint64_t(pages) * uint64_t(pageSize) : 0;
+}
 
 // Progress on a terminal: one bar per stage, redrawn in place; otherwise one line per stage.
 class ProgressPrinter {
@@ -142,7 +211,8 @@ void printSummary(const BakeReport& r, const std::string& outPath, int threads, 
 }  // namespace
 
 int runBake(int argc, char** argv) {
-    const cli::Args args(argc, argv, {"-o", "--out", "--n1", "--n2", "--delta", "--seed", "--threads", "--report", "--margin-rings", "--landmarks"},
+    const cli::Args args(argc, argv, {"-o", "--out", "--n1", "--n2", "--delta", "--seed", "--threads", "--report", "--margin-rings",
+                          "--landmarks", "--max-memory"},
                          {"--no-compress", "--exact-first-layer", "--repair", "--quiet", "--help"});
     if (args.flag("--help")) {
         std::printf("%s", kUsage);
@@ -170,6 +240,7 @@ int runBake(int argc, char** argv) {
     o.marginRings = uint32_t(rings);
     o.exactFirstLayer = args.flag("--exact-first-layer");
     o.compress = !args.flag("--no-compress");
+    o.maxMemoryBytes = args.has("--max-memory") ? parseSize(args.str("--max-memory")) : physicalMemoryBytes();
     const long long threadsArg = args.integer("--threads", 0);
     if (threadsArg < 0 || threadsArg > 1024) throw cli::UsageError("--threads must be in [1, 1024]");
     const int threads = threadsArg > 0 ? int(threadsArg) : tbb::info::default_concurrency();
@@ -179,17 +250,30 @@ int runBake(int argc, char** argv) {
     checkWritable(outPath);  // fail before the bake, not after it
     Mesh mesh;
     if (!loadMeshForCommand("bake", args.positional()[0], args.flag("--repair"), mesh)) return 1;
-    BakeReport report;
     ProgressPrinter progress(args.flag("--quiet"));
-    std::vector<uint8_t> blob;
+    InterruptGuard interrupts;
+    BakeResult result;
     try {
-        blob = bakeMesh(mesh, o, report, [&](const char* stage, double f) { progress(stage, f); });
+        result = bake(mesh, o, [&](const char* stage, double f) { progress(stage, f); }, &gInterrupted);
     } catch (const std::invalid_argument& e) {
         progress.finish();
         throw cli::UsageError(e.what());
+    } catch (const BakeCancelled&) {
+        progress.finish();
+        std::fprintf(stderr, "vorogeo bake: interrupted; nothing written\n");
+        return 130;
+    } catch (const BakeLimitError& e) {
+        progress.finish();
+        std::fprintf(stderr, "vorogeo bake: %s; nothing written\n", e.what());
+        return 1;
     }
     progress.finish();
-    writeFileAtomically(outPath, blob);
+    if (gInterrupted) {
+        std::fprintf(stderr, "vorogeo bake: interrupted; nothing written\n");
+        return 130;
+    }
+    const BakeReport& report = result.report;
+    writeFileAtomically(outPath, result.blob);
     const double seconds = wall.seconds(), rss = peakRssMb();
     if (args.has("--report")) writeReport(args.str("--report"), report, threads, seconds, rss);
     if (!args.flag("--quiet")) printSummary(report, outPath, threads, seconds, rss);

@@ -32,6 +32,13 @@ uint64_t count(const V* v) {
 
 bool finite(float x) { return x == x && x - x == 0.0f; }
 
+// The verifier checks that vectors lie inside the buffer, not that their elements are
+// aligned for their type (a crafted buffer can put 8-byte structs at 4-byte offsets).
+template <class T>
+bool aligned(const T* p) {
+    return (reinterpret_cast<uintptr_t>(p) & (alignof(T) - 1)) == 0;
+}
+
 // Entries a packed 12-bit array of `bytes` bytes holds (entry k ends at byte 3(k/2)+1+k%2).
 uint64_t packedCapacity(uint64_t bytes) { return (bytes / 3) * 2 + (bytes % 3 == 2 ? 1 : 0); }
 
@@ -120,15 +127,21 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& 
     out.landmarkCount = uint32_t(K);
     out.landmarkScale = raw(g->landmark_scale());
     out.nodeLandmarks = raw(g->node_landmarks());
-    for (uint64_t k = 0; k < K; ++k)
-        if (!finite(out.landmarkScale[k]) || out.landmarkScale[k] < 0.0f || g->landmark_vertex()->Get(k) >= V)
-            return VG_ERR_CORRUPT_CONTENT;
     out.second = rawStructs<Patch>(g->second_patches());
     out.first = rawStructs<Patch>(g->first_patches());
     out.slots = raw(g->slots());
     out.secondDistances = raw(g->second_distances());
     out.firstDistances = raw(g->first_distances());
 
+    if (!aligned(out.positions) || !aligned(out.vertexPatch) || !aligned(out.vertexSlot) ||
+        !aligned(out.nodeVertex) || !aligned(out.nodeSecondBegin) || !aligned(out.nodeSecond) ||
+        !aligned(out.nodeFirstBegin) || !aligned(out.nodeFirst) || !aligned(out.nodeEdgeBegin) ||
+        !aligned(out.nodeEdge) || !aligned(out.landmarkScale) || !aligned(out.nodeLandmarks) ||
+        !aligned(out.second) || !aligned(out.first) || !aligned(out.slots))
+        return VG_ERR_CORRUPT_STRUCTURE;
+    for (uint64_t k = 0; k < K; ++k)
+        if (!finite(out.landmarkScale[k]) || out.landmarkScale[k] < 0.0f || g->landmark_vertex()->Get(k) >= V)
+            return VG_ERR_CORRUPT_CONTENT;
     for (uint64_t i = 0; i < 3 * V; ++i)
         if (!finite(out.positions[i])) return VG_ERR_CORRUPT_CONTENT;
 

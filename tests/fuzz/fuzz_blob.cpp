@@ -1,0 +1,103 @@
+// libFuzzer target: a blob is untrusted input. Opens the input with the runtime and, when
+// it is accepted, runs every query kind on it, with vertex numbers and bounds taken from
+// the input too. The first byte chooses how the rest is presented:
+//   0: the whole blob as a file holds it (header, checksum, payload);
+//   1: a flatbuffer, sealed here in an uncompressed container with a matching checksum,
+//      so that mutations reach the verifier and the meaning checks instead of the checksum;
+//   2: the same, zstd-compressed.
+// Nothing may crash, read out of bounds or trip UBSan; every status must be a known one.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+#include "blob_writer.h"
+#include "vorogeo.h"
+
+namespace {
+
+constexpr size_t kMaxOpenMemory = size_t(64) << 20;  // the harness's budget, not a runtime limit
+
+void check(vg_status st) {
+    if (st < VG_OK || st > VG_ERR_OUT_OF_MEMORY) std::abort();
+}
+
+// Reads little pieces of the input to steer the queries; zeros once it runs out.
+struct Steer {
+    const uint8_t* p;
+    size_t n, at = 0;
+    uint32_t u32() {
+        uint32_t v = 0;
+        for (int i = 0; i < 4; ++i) v = (v << 8) | (at < n ? p[at++] : 0);
+        return v;
+    }
+};
+
+// A vertex number: mostly valid, sometimes just out of range or far beyond it.
+uint32_t vertex(Steer& s, uint32_t V) {
+    const uint32_t r = s.u32();
+    if (r % 16 == 0) return V + r % 3;
+    if (r % 16 == 1) return 0xFFFFFFFFu;
+    return V ? r % V : r;
+}
+
+float bound(Steer& s) {
+    const float pick[] = {0.0f, 1e-6f, 0.5f, 1.0f, 10.0f, INFINITY, -1.0f, NAN};
+    return pick[s.u32() % 8];
+}
+
+void queryEverything(const vg_graph* g, const uint8_t* data, size_t size) {
+    const size_t wsBytes = vg_workspace_size(g);
+    std::vector<unsigned char> wsMemory(wsBytes + 1);
+    vg_workspace* ws = nullptr;
+    // An odd address: the workspace accepts any alignment.
+    if (vg_workspace_init(g, wsMemory.data() + 1, wsBytes, &ws) != VG_OK) std::abort();
+    const uint32_t V = vg_vertex_count(g);
+    Steer steer{data, size};
+    float d = 0;
+    for (int i = 0; i < 4; ++i) {
+        const uint32_t a = vertex(steer, V), b = vertex(steer, V);
+        check(vg_distance(g, ws, a, b, &d));
+        check(vg_distance_within(g, ws, a, b, bound(steer), &d));
+    }
+    uint32_t set[5];
+    for (uint32_t& v : set) v = vertex(steer, V);
+    size_t index = 0;
+    check(vg_nearest(g, ws, set[0], set + 1, 4, &index, &d));
+    std::vector<float> field(V);
+    std::vector<uint32_t> labels(V);
+    check(vg_distance_field(g, ws, set, 2, field.data()));
+    check(vg_distance_field_nearest(g, ws, set + 1, 4, field.data(), labels.data()));
+    for (uint32_t i = 0; i < V; ++i)
+        if (std::isnan(field[i]) || field[i] < 0) std::abort();  // distances are never NaN or negative
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    if (size < 1) return 0;
+    const uint8_t mode = data[0] % 3;
+    std::vector<uint8_t> rest(data + 1, data + size);
+    std::vector<uint8_t> blob = mode == 0 ? rest : vorogeo::packContainer(rest, mode == 2, 1);
+    if (mode != 0 && rest.empty()) return 0;
+
+    // 16-byte aligned copy, as a host's mapping or asset buffer would be.
+    std::vector<uint64_t> words(blob.size() / 8 + 2);
+    unsigned char* bytes = reinterpret_cast<unsigned char*>(words.data());
+    if (!blob.empty()) std::memcpy(bytes, blob.data(), blob.size());
+    size_t need = 0;
+    check(vg_open_size(bytes, blob.size(), &need));
+    if (need == 0 || need > kMaxOpenMemory) return 0;
+    std::vector<unsigned char> memory(need);
+    const vg_graph* g = nullptr;
+    const vg_status st = vg_open(bytes, blob.size(), memory.data(), need, &g);
+    check(st);
+    if (st != VG_OK) {
+        if (g != nullptr) std::abort();
+        return 0;
+    }
+    queryEverything(g, data, size);
+    return 0;
+}

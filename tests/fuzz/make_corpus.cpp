@@ -1,0 +1,105 @@
+// Writes the fuzzers' seed corpora (committed under tests/fuzz/corpus/): small blobs baked
+// from generated meshes, in the three presentations fuzz_blob.cpp understands, and small
+// mesh files of every format, valid and broken, for fuzz_mesh.cpp. Rerun it when the blob
+// format changes:  build/tests/vorogeo_fuzz_corpus tests/fuzz/corpus
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "bake.h"
+#include "generators.h"
+#include "mesh_io.h"
+#include "vorogeo_container.h"
+
+using namespace vorogeo;
+
+namespace {
+
+void writeSeed(const std::filesystem::path& path, uint8_t first, const std::vector<uint8_t>& body) {
+    std::ofstream out(path, std::ios::binary);
+    out.put(char(first));
+    out.write(reinterpret_cast<const char*>(body.data()), std::streamsize(body.size()));
+    if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
+std::vector<uint8_t> bakeSmall(const Mesh& mesh, uint32_t n2) {
+    BakeOptions o;
+    o.compress = false;
+    o.n2 = n2;
+    o.landmarks = 2;
+    BakeReport report;
+    return bakeMesh(mesh, o, report);
+}
+
+void blobSeeds(const std::filesystem::path& dir, const std::string& name, const Mesh& mesh, uint32_t n2) {
+    const std::vector<uint8_t> blob = bakeSmall(mesh, n2);
+    const std::vector<uint8_t> flatbuffer(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end());
+    writeSeed(dir / (name + "-file"), 0, blob);
+    writeSeed(dir / (name + "-flatbuffer"), 1, flatbuffer);
+    writeSeed(dir / (name + "-zstd"), 2, flatbuffer);
+}
+
+std::vector<uint8_t> meshFile(const Mesh& mesh, MeshFormat format, const std::filesystem::path& scratch) {
+    std::string error;
+    if (!writeMesh(mesh, scratch.string(), format, error)) throw std::runtime_error(error);
+    std::ifstream in(scratch, std::ios::binary);
+    return std::vector<uint8_t>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::fprintf(stderr, "usage: vorogeo_fuzz_corpus OUT_DIR (writes OUT_DIR/blob and OUT_DIR/mesh)\n");
+        return 2;
+    }
+    try {
+        const std::filesystem::path root(argv[1]), blobs = root / "blob", meshes = root / "mesh";
+        std::filesystem::create_directories(blobs);
+        std::filesystem::create_directories(meshes);
+
+        blobSeeds(blobs, "grid", planeGrid(5, 5, 1.0, 0.1, 2), 2);
+        blobSeeds(blobs, "torus", torus(1.0, 0.4, 8, 6), 3);
+        Mesh pair = planeGrid(3, 3, 1.0);
+        const Mesh other = planeGrid(2, 2, 1.0);
+        const uint32_t offset = pair.vertexCount();
+        for (const Vec3& p : other.positions) pair.positions.push_back(p + Vec3{3, 0, 0});
+        for (const Tri& t : other.faces) pair.faces.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+        if (!buildConnectivity(pair).ok) throw std::runtime_error("two grids: bad connectivity");
+        blobSeeds(blobs, "two-grids", pair, 2);
+
+        // First byte: extension index (obj, off, ply, stl, sniffed) + 0x80 for --repair.
+        const std::filesystem::path scratch = root / "scratch.tmp";
+        struct Format {
+            MeshFormat format;
+            uint8_t index;
+            const char* name;
+        };
+        const Format formats[] = {{MeshFormat::Obj, 0, "obj"},          {MeshFormat::Off, 1, "off"},
+                                  {MeshFormat::PlyAscii, 2, "ply-ascii"}, {MeshFormat::PlyBinary, 2, "ply-binary"},
+                                  {MeshFormat::StlAscii, 3, "stl-ascii"}, {MeshFormat::StlBinary, 3, "stl-binary"}};
+        const Mesh valid = planeGrid(2, 2, 1.0, 0.1, 5);
+        for (const Format& f : formats) {
+            writeSeed(meshes / (std::string("grid-") + f.name), f.index, meshFile(valid, f.format, scratch));
+            writeSeed(meshes / (std::string("grid-sniffed-") + f.name), 4, meshFile(valid, f.format, scratch));
+        }
+        for (Defect d : kAllDefects) {
+            const Mesh broken = brokenMesh(d);
+            std::string name = std::string("broken-") + defectName(d);
+            for (char& c : name) c = c == ' ' ? '-' : c;
+            writeSeed(meshes / (name + "-obj"), 0x80, meshFile(broken, MeshFormat::Obj, scratch));
+            writeSeed(meshes / (name + "-ply"), 0x82, meshFile(broken, MeshFormat::PlyBinary, scratch));
+        }
+        const std::string polygons = "# quads and a pentagon\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0.5 0\n"
+                                     "vt 0 0\nvn 0 0 1\nf 1/1/1 2/1/1 3/1/1 4/1/1\nf 2 5 3\n";
+        writeSeed(meshes / "polygons-obj", 0, std::vector<uint8_t>(polygons.begin(), polygons.end()));
+        std::filesystem::remove(scratch);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "vorogeo_fuzz_corpus: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,160 @@
+// Limits and interrupted work: bakes that would break the flatbuffers 2 GiB limit or the
+// memory budget are refused up front with a message naming the limit; Ctrl-C, SIGTERM and
+// SIGKILL during a bake leave no output file (and no temporary one after a clean stop).
+#include <catch2/catch.hpp>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include "bake.h"
+#include "bake_limits.h"
+#include "generators.h"
+#include "mesh_io.h"
+#include "test_helpers.h"
+
+using namespace vorogeo;
+
+namespace {
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+std::vector<std::string> filesIn(const test::TempDir& dir, const std::string& probe) {
+    std::vector<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(probe).parent_path()))
+        names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    (void)dir;
+    return names;
+}
+
+// Starts `vorogeo ARGS...` with stderr to a file; the child gets default signal handling.
+pid_t startTool(const std::vector<std::string>& args, const std::string& errPath) {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        const int err = ::open(errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        const int null = ::open("/dev/null", O_WRONLY);
+        ::dup2(err, 2);
+        ::dup2(null, 1);
+        ::signal(SIGINT, SIG_DFL);
+        ::signal(SIGTERM, SIG_DFL);
+        std::vector<char*> argv;
+        argv.push_back(const_cast<char*>(VOROGEO_TOOL_PATH));
+        for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        ::execv(VOROGEO_TOOL_PATH, argv.data());
+        ::_exit(127);
+    }
+    return pid;
+}
+
+// Waits until the file contains `marker` (or the process ended); false after 120 s.
+bool waitFor(const std::string& path, const std::string& marker, pid_t pid) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (std::chrono::steady_clock::now() < deadline) {
+        if (slurp(path).find(marker) != std::string::npos) return true;
+        int status = 0;
+        if (::waitpid(pid, &status, WNOHANG) == pid) return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return false;
+}
+
+}  // namespace
+
+TEST_CASE("limits: a blob over the flatbuffers 2 GiB limit is refused before baking", "[limits]") {
+    BakeOptions o;
+    CHECK(estimateBake(1000000, o).flatbufferBytes < kMaxFlatbufferBytes);
+    CHECK_NOTHROW(checkBakeLimits(1000000, o));
+    try {
+        checkBakeLimits(40000000, o);
+        FAIL("40M vertices accepted");
+    } catch (const BakeLimitError& e) {
+        const std::string m = e.what();
+        CHECK(m.find("2 GiB") != std::string::npos);
+        CHECK(m.find("split the mesh") != std::string::npos);
+    }
+    // Larger patches, larger blobs: the limit comes sooner.
+    o.n2 = 1;
+    CHECK(estimateBake(1000000, o).flatbufferBytes > estimateBake(1000000, BakeOptions()).flatbufferBytes);
+    // The exact check before serialising.
+    CHECK_NOTHROW(checkFlatbufferSize(kMaxFlatbufferBytes, 10));
+    CHECK_THROWS_AS(checkFlatbufferSize(kMaxFlatbufferBytes + 1, 10), BakeLimitError);
+}
+
+TEST_CASE("limits: a memory budget refuses up front and stops a bake that goes over it", "[limits]") {
+    const Mesh mesh = bumpyTorus(40, 20);
+    BakeOptions o;
+    o.maxMemoryBytes = 1 << 20;
+    BakeReport report;
+    try {
+        bakeMesh(mesh, o, report);
+        FAIL("a 1 MiB budget was accepted");
+    } catch (const BakeLimitError& e) {
+        CHECK(std::string(e.what()).find("--max-memory 1 MiB") != std::string::npos);
+    }
+    o.maxMemoryBytes = 64ull << 30;
+    CHECK_FALSE(bakeMesh(mesh, o, report).empty());
+    CHECK(residentBytes() > 0);
+    BakeOptions tight;
+    tight.maxMemoryBytes = 1;
+    CHECK_THROWS_WITH(checkMemoryDuringBake(tight, "partition"), Catch::Contains("during partition"));
+}
+
+TEST_CASE("limits: vorogeo bake --max-memory refuses with a message and writes nothing", "[limits][cli]") {
+    test::TempDir dir;
+    std::string error;
+    REQUIRE(writeMesh(bumpyTorus(40, 20), dir.file("torus.ply"), error));
+    const std::string out = dir.file("torus.vgeo");
+    test::ToolResult r = test::runTool("bake '" + dir.file("torus.ply") + "' -o '" + out + "' --max-memory 2M");
+    CHECK(r.status == 1);
+    CHECK(r.err.find("--max-memory 2 MiB") != std::string::npos);
+    CHECK(r.err.find("nothing written") != std::string::npos);
+    CHECK(filesIn(dir, out) == std::vector<std::string>{"torus.ply"});
+    r = test::runTool("bake '" + dir.file("torus.ply") + "' -o '" + out + "' --max-memory lots");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("--max-memory must be a size") != std::string::npos);
+    r = test::runTool("bake '" + dir.file("torus.ply") + "' -o '" + out + "' --max-memory 4G --quiet");
+    CHECK(r.status == 0);
+    CHECK(std::filesystem::exists(out));
+}
+
+TEST_CASE("interrupts: SIGINT or SIGTERM stop a bake cleanly, SIGKILL leaves no output", "[limits][cli]") {
+    test::TempDir dir;
+    std::string error;
+    const std::string mesh = dir.file("torus.ply"), out = dir.file("torus.vgeo"), err = dir.file("err.txt");
+    REQUIRE(writeMesh(bumpyTorus(), mesh, error));  // 28,800 vertices: a few seconds of bake
+    struct Case {
+        int signal;
+        const char* after;  // progress line to wait for
+    };
+    for (Case c : {Case{SIGINT, "bake: first layer"}, Case{SIGTERM, "bake: second-layer geodesics"},
+                   Case{SIGINT, "bake: first-layer overlay"}, Case{SIGKILL, "bake: second-layer geodesics"}}) {
+        INFO("signal " << c.signal << " after '" << c.after << "'");
+        const pid_t pid = startTool({"bake", mesh, "-o", out, "--threads", "2"}, err);
+        REQUIRE(pid > 0);
+        REQUIRE(waitFor(err, c.after, pid));
+        ::kill(pid, c.signal);
+        int status = 0;
+        REQUIRE(::waitpid(pid, &status, 0) == pid);
+        if (c.signal == SIGKILL) {
+            CHECK(WIFSIGNALED(status));
+        } else {
+            REQUIRE(WIFEXITED(status));
+            CHECK(WEXITSTATUS(status) == 130);
+            CHECK(slurp(err).find("interrupted; nothing written") != std::string::npos);
+        }
+        // No output, and no temporary file either (the blob is written only at the end).
+        CHECK(filesIn(dir, out) == std::vector<std::string>{"err.txt", "torus.ply"});
+    }
+}

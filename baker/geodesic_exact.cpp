@@ -1,4 +1,5 @@
 #include "geodesic_exact.h"
+#include "parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +7,6 @@
 #include <stdexcept>
 #include <string>
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 namespace vorogeo {
 
@@ -671,8 +670,8 @@ std::vector<std::vector<double>> exactDistancesBatch(const ExactGeodesic& geo,
                                                      const std::vector<uint32_t>& sources,
                                                      double maxDistance) {
     std::vector<std::vector<double>> out(sources.size());
-    tbb::enumerable_thread_specific<ExactWorkspace> workspaces;
-    tbb::parallel_for(size_t(0), sources.size(), [&](size_t i) {
+    PerThread<ExactWorkspace> workspaces;
+    parallelFor(sources.size(), [&](size_t i) {
         ExactWorkspace& ws = workspaces.local();
         ExactQuery q;
         q.sources.push_back(GeodesicSource::atVertex(sources[i]));

@@ -1,6 +1,5 @@
 #include "partition.h"
 
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
@@ -14,6 +13,7 @@
 #include "patch_topology.h"
 #include "seed_sampling.h"
 #include "voronoi_domain.h"
+#include "parallel.h"
 
 namespace vorogeo {
 namespace {
@@ -111,7 +111,7 @@ Partition partitionMesh(const Mesh& mesh, const PartitionOptions& options, const
     std::vector<DomainPartition> slots(n);
     std::vector<std::vector<uint32_t>> slotSeeds(n);  // mesh vertex ids
     size_t done = 0;
-    tbb::parallel_for(size_t(0), n, [&](size_t i) {
+    parallelFor(n, [&](size_t i) {
         const Patch& p = out.first[i];
         const ExactGeodesic geo(mesh, p.faces);
         const uint32_t nv = geo.vertexCount();

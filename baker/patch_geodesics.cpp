@@ -6,10 +6,9 @@
 #include <memory>
 #include <mutex>
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include "geodesic_exact.h"
+#include "parallel.h"
 
 namespace vorogeo {
 
@@ -56,7 +55,7 @@ void computeLayer(const Mesh& mesh, const std::vector<Patch>& patches, const std
     const std::vector<uint8_t> sharing = patchesPerVertex(mesh, facePatch);
     out.assign(patches.size(), PatchMatrix());
     std::vector<std::unique_ptr<ExactGeodesic>> domains(patches.size());
-    tbb::parallel_for(size_t(0), patches.size(), [&](size_t p) {
+    parallelFor(patches.size(), [&](size_t p) {
         PatchMatrix& m = out[p];
         orderPatch(patches[p], sharing, m);
         m.rows = nodesOnly ? m.nodeCount : uint32_t(m.vertices.size());
@@ -81,11 +80,11 @@ void computeLayer(const Mesh& mesh, const std::vector<Patch>& patches, const std
         ExactQuery query;
         std::vector<double> dist;
     };
-    tbb::enumerable_thread_specific<Scratch> scratch;
+    PerThread<Scratch> scratch;
     std::atomic<size_t> done{0};
     std::mutex progressMutex;
     const size_t step = std::max<size_t>(1, jobs.size() / 200);
-    tbb::parallel_for(size_t(0), jobs.size(), [&](size_t k) {
+    parallelFor(jobs.size(), [&](size_t k) {
         const Job job = jobs[k];
         PatchMatrix& m = out[job.patch];
         const ExactGeodesic& geo = *domains[job.patch];
@@ -161,7 +160,7 @@ void composeFirstLayer(const Mesh& mesh, const Partition& partition, const std::
     std::vector<std::vector<uint32_t>> children(partition.first.size());
     for (uint32_t p = 0; p < partition.second.size(); ++p) children[partition.second[p].parent].push_back(p);
     first.assign(partition.first.size(), PatchMatrix());
-    tbb::parallel_for(size_t(0), partition.first.size(), [&](size_t f) {
+    parallelFor(partition.first.size(), [&](size_t f) {
         PatchMatrix& m = first[f];
         orderPatch(partition.first[f], sharing, m);
         m.rows = m.nodeCount;

@@ -1,7 +1,5 @@
 #include "voronoi_domain.h"
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +9,7 @@
 #include <unordered_map>
 
 #include "patch_topology.h"
+#include "parallel.h"
 
 namespace vorogeo {
 
@@ -164,8 +163,8 @@ void applySeedRuns(const ExactGeodesic& geo, const std::vector<uint32_t>& seeds,
         ExactWorkspace workspace;
         std::vector<double> distances;
     };
-    tbb::enumerable_thread_specific<Scratch> scratch;
-    tbb::parallel_for(size_t(0), runs.size(), [&](size_t i) {
+    PerThread<Scratch> scratch;
+    parallelFor(runs.size(), [&](size_t i) {
         ExactQuery q;
         q.sources.push_back(GeodesicSource::atVertex(seeds[runs[i].seed]));
         q.maxDistance = runs[i].bound;

@@ -3,8 +3,11 @@
 # nothing and changes nothing when everything is already present.
 set -euo pipefail
 
+# clang + libclang-rt-14-dev: libFuzzer for scripts/fuzz.sh (gcc has no coverage-guided fuzzer);
+# gcc's own ASan/UBSan/TSan runtimes come with g++.
 packages=(cmake g++ make libopenmesh-dev libzstd-dev libflatbuffers-dev flatbuffers-compiler
-          libtbb-dev catch2 libstb-dev pkg-config mono-mcs mono-runtime python3)
+          libtbb-dev catch2 libstb-dev pkg-config mono-mcs mono-runtime python3
+          clang libclang-rt-14-dev)
 
 missing=()
 for p in "${packages[@]}"; do

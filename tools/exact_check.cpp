@@ -5,11 +5,10 @@
 #include <stdexcept>
 #include <string>
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "timing.h"
+#include "parallel.h"
 
 namespace vorogeo::tools {
 
@@ -54,11 +53,11 @@ PairCheckResult checkPairs(const ExactGeodesic& geo, const std::vector<DistanceP
     std::vector<double> computed(pairs.size());
     std::vector<double> seconds(work.size());
     std::vector<uint64_t> windows(work.size());
-    tbb::enumerable_thread_specific<ExactWorkspace> workspaces;
-    tbb::enumerable_thread_specific<std::vector<double>> fields;
+    PerThread<ExactWorkspace> workspaces;
+    PerThread<std::vector<double>> fields;
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] {
-        tbb::parallel_for(size_t(0), work.size(), [&](size_t i) {
+        parallelFor(work.size(), [&](size_t i) {
             ExactQuery q;
             q.sources.push_back(GeodesicSource::atVertex(work[i].first));
             std::vector<double>& dist = fields.local();

@@ -35,14 +35,15 @@ BakeEstimate estimateBake(uint64_t vertices, const BakeOptions& o) {
     double s1 = 0, s2 = 0;
     patchSizes(vertices, o, s1, s2);
     const double V = double(vertices);
-    // Fitted to bakes of the shared meshes and of armadillo-50k with n1 and n2 varied
-    // (BENCHMARKS.md, "Limits"); the margins make both upper bounds on what was measured.
-    // Per vertex: mesh, partition and workspaces (fixed), second-layer matrices (grow with
-    // the second-layer patch size), first-layer rows (grow with the first-layer patch size).
+    // Fitted to bakes of igea and of armadillo-50k with n1 and n2 varied (BENCHMARKS.md,
+    // "Bake limits"), in terms of the requested patch sizes (the partition may split
+    // patches further to make disks); the 15% margin makes both upper bounds on every
+    // measured bake. Per vertex: mesh, partition and workspaces (fixed), second-layer
+    // matrices (grow with the second-layer patch size), first-layer rows (first-layer size).
     const double exactFirst = o.exactFirstLayer ? 2.0 : 1.0;
     const double margin = 1.15;
-    const double peakPerVertex = margin * (1750.0 + 9.0 * s2 + 0.2 * s1 * exactFirst);
-    const double fbPerVertex = margin * (110.0 + 1.3 * s2 + 0.02 * s1);
+    const double peakPerVertex = margin * (1700.0 + 4.5 * s2 + 0.12 * s1 * exactFirst);
+    const double fbPerVertex = margin * (135.0 + 0.62 * s2 + 0.006 * s1);
     BakeEstimate e;
     e.peakBytes = uint64_t(32.0 * 1024 * 1024 + V * peakPerVertex);
     e.flatbufferBytes = uint64_t(4096.0 + V * fbPerVertex);

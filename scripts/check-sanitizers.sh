@@ -24,7 +24,7 @@ tsan() {
   TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/tests/tsan.supp" \
   VOROGEO_STRESS_SECONDS=${VOROGEO_STRESS_SECONDS:-5} \
     ctest --test-dir build-tsan --output-on-failure -j"$jobs" \
-      -R 'stress|determinism|threads|parallel batch|bake|partition|interrupts' -E 'every shared mesh'
+      -R 'stress|determinism|threads|parallel batch|bake|partition' -E 'every shared mesh'
 }
 
 case "$which" in

@@ -332,7 +332,7 @@ TEST_CASE("runtime: arguments are checked and named by status codes", "[runtime]
     vg_workspace* w = nullptr;
     CHECK(vg_workspace_init(graph, small.data(), small.size(), &w) == VG_ERR_BUFFER_TOO_SMALL);
     CHECK(w == nullptr);
-    for (int s = 0; s <= 14; ++s) CHECK(std::string(vg_status_string(vg_status(s))) != "unknown status");
+    for (int s = 0; s <= 15; ++s) CHECK(std::string(vg_status_string(vg_status(s))) != "unknown status");
     CHECK(std::string(vg_status_string(vg_status(99))) == "unknown status");
 }
 
@@ -448,4 +448,69 @@ TEST_CASE("runtime: error statistics on answers known in advance", "[runtime][ev
     CHECK(r.overOnePercent == 90);
     REQUIRE(r.worst.size() == 5);
     CHECK(r.worst[0].source == 99);
+}
+
+TEST_CASE("runtime: a time-sliced one-to-all query equals the one-shot query bit for bit", "[runtime][sliced]") {
+    RuntimeGraph g = openOrFail(bumpyBlob());
+    const vg_graph* graph = g.graph();
+    const uint32_t V = g.vertexCount();
+    const std::vector<uint32_t> sources = {5, V / 3, 2 * V / 3, 5};  // a source listed twice
+    RuntimeWorkspace oneShot(g), sliced(g), other(g);
+    std::vector<float> expected(V), got(V);
+    std::vector<uint32_t> expectedLabels(V), labels(V);
+    REQUIRE(vg_distance_field_nearest(graph, oneShot.get(), sources.data(), sources.size(), expected.data(),
+                                      expectedLabels.data()) == VG_OK);
+    size_t previousSteps = 0;
+    for (uint32_t budget : {1u, 3u, 50u, 1000u, 0xFFFFFFFFu}) {
+        INFO("max_steps " << budget);
+        std::fill(got.begin(), got.end(), -1.0f);
+        REQUIRE(vg_distance_field_begin(graph, sliced.get(), sources.data(), sources.size(), got.data(),
+                                        labels.data()) == VG_OK);
+        int done = 0;
+        size_t steps = 0;
+        while (!done) {
+            REQUIRE(vg_distance_field_step(graph, sliced.get(), budget, &done) == VG_OK);
+            ++steps;
+            REQUIRE(steps < 1000000);
+        }
+        CHECK(std::memcmp(got.data(), expected.data(), V * sizeof(float)) == 0);
+        CHECK(labels == expectedLabels);
+        if (previousSteps) CHECK(steps <= previousSteps);  // larger slices, fewer calls
+        if (budget == 1) CHECK(steps > g.vertexCount() / 100);
+        if (budget == 0xFFFFFFFFu) CHECK(steps == 1);
+        previousSteps = steps;
+        REQUIRE(vg_distance_field_step(graph, sliced.get(), 1, &done) == VG_OK);  // finished stays finished
+        CHECK(done == 1);
+    }
+
+    // Two sliced queries on two workspaces, interleaved, do not disturb each other.
+    std::vector<float> second(V);
+    const uint32_t single = V / 2;
+    std::vector<float> singleExpected = RuntimeWorkspace(g).field({single});
+    REQUIRE(vg_distance_field_begin(graph, sliced.get(), sources.data(), sources.size(), got.data(), nullptr) == VG_OK);
+    REQUIRE(vg_distance_field_begin(graph, other.get(), &single, 1, second.data(), nullptr) == VG_OK);
+    int doneA = 0, doneB = 0;
+    while (!doneA || !doneB) {
+        REQUIRE(vg_distance_field_step(graph, sliced.get(), 7, &doneA) == VG_OK);
+        REQUIRE(vg_distance_field_step(graph, other.get(), 11, &doneB) == VG_OK);
+    }
+    CHECK(std::memcmp(got.data(), expected.data(), V * sizeof(float)) == 0);
+    CHECK(std::memcmp(second.data(), singleExpected.data(), V * sizeof(float)) == 0);
+
+    // Another query on the workspace abandons the sliced one; bad calls are named.
+    int done = 0;
+    REQUIRE(vg_distance_field_begin(graph, sliced.get(), sources.data(), sources.size(), got.data(), nullptr) == VG_OK);
+    REQUIRE(vg_distance_field_step(graph, sliced.get(), 2, &done) == VG_OK);
+    float d = 0;
+    REQUIRE(vg_distance(graph, sliced.get(), 0, 1, &d) == VG_OK);
+    CHECK(vg_distance_field_step(graph, sliced.get(), 2, &done) == VG_ERR_NO_SLICED_QUERY);
+    CHECK(done == 0);
+    RuntimeWorkspace fresh(g);
+    CHECK(vg_distance_field_step(graph, fresh.get(), 2, &done) == VG_ERR_NO_SLICED_QUERY);
+    CHECK(vg_distance_field_step(graph, fresh.get(), 2, nullptr) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(vg_distance_field_step(nullptr, fresh.get(), 2, &done) == VG_ERR_INVALID_ARGUMENT);
+    const uint32_t bad = V;
+    CHECK(vg_distance_field_begin(graph, fresh.get(), &bad, 1, got.data(), nullptr) == VG_ERR_INVALID_VERTEX);
+    CHECK(vg_distance_field_begin(graph, fresh.get(), nullptr, 1, got.data(), nullptr) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(vg_distance_field_begin(graph, fresh.get(), &single, 1, nullptr, nullptr) == VG_ERR_INVALID_ARGUMENT);
 }

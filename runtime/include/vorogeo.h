@@ -70,7 +70,8 @@ typedef enum vg_status {
     VG_ERR_INVALID_VERTEX = 11,     /* a vertex id >= vg_vertex_count() */
     VG_ERR_WRONG_WORKSPACE = 12,    /* the workspace was made for another graph */
     VG_ERR_IO = 13,                 /* vg_open_file could not open, read or map the file */
-    VG_ERR_OUT_OF_MEMORY = 14       /* the allocator callback returned NULL */
+    VG_ERR_OUT_OF_MEMORY = 14,      /* the allocator callback returned NULL */
+    VG_ERR_NO_SLICED_QUERY = 15     /* vg_distance_field_step without a live sliced query */
 } vg_status;
 
 /* Human-readable, static, never NULL. Unknown codes give "unknown status". */
@@ -156,6 +157,21 @@ VG_API vg_status vg_distance_field(const vg_graph* graph, vg_workspace* workspac
 VG_API vg_status vg_distance_field_nearest(const vg_graph* graph, vg_workspace* workspace,
                                     const uint32_t* sources, size_t source_count,
                                     float* out_distances, uint32_t* out_nearest);
+
+/* The same query time-sliced, for hosts that spread it over frames (as Detour's sliced
+ * path search): vg_distance_field_begin checks the arguments and starts it; every
+ * vg_distance_field_step does at most `max_steps` units of work (one unit: one graph node
+ * settled, one patch filled, or one source's own patches written; each bounded by the
+ * size of a patch) and sets *out_done to 1 once out_distances (and out_nearest, if given)
+ * hold bit for bit what vg_distance_field_nearest gives; further steps do nothing. Until
+ * then the caller keeps `sources` and the outputs alive and does not read them, and the
+ * workspace belongs to the sliced query: any other query on it abandons the sliced one
+ * (its next step returns VG_ERR_NO_SLICED_QUERY). */
+VG_API vg_status vg_distance_field_begin(const vg_graph* graph, vg_workspace* workspace,
+                                  const uint32_t* sources, size_t source_count,
+                                  float* out_distances, uint32_t* out_nearest);
+VG_API vg_status vg_distance_field_step(const vg_graph* graph, vg_workspace* workspace,
+                                 uint32_t max_steps, int* out_done);
 
 /* Which of `target_count` targets is geodesically nearest to `source`: its index in
  * `targets` (the first such index when a vertex is listed twice) and its distance.

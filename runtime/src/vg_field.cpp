@@ -129,11 +129,11 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
     }
 }
 
-}  // namespace
+enum Phase : uint32_t { Search = 0, Fill = 1, Direct = 2, Done = 3 };
 
-extern "C" vg_status vg_distance_field_nearest(const vg_graph* graph, vg_workspace* workspace,
-                                               const uint32_t* sources, size_t source_count, float* out_distances,
-                                               uint32_t* out_nearest) {
+// Checks the arguments, clears the outputs and seeds the search from the sources.
+vg_status beginField(const vg_graph* graph, vg_workspace* workspace, const uint32_t* sources, size_t source_count,
+                     float* out_distances, uint32_t* out_nearest) {
     const vg_status st = vg::checkQuery(graph, workspace, out_distances);
     if (st != VG_OK) return st;
     if (source_count > 0 && sources == nullptr) return VG_ERR_INVALID_ARGUMENT;
@@ -147,52 +147,103 @@ extern "C" vg_status vg_distance_field_nearest(const vg_graph* graph, vg_workspa
     for (uint32_t v = 0; v < g.vertexCount; ++v) out_distances[v] = inf;
     if (out_nearest)
         for (uint32_t v = 0; v < g.vertexCount; ++v) out_nearest[v] = uint32_t(source_count);
-
-    Frontier& F = ws.forward;
-    const Scope everywhere{ws.detail, gen, true};
     auto key = [](uint32_t, float dv) { return dv; };
     auto none = [](uint32_t, float) {};
     for (size_t i = 0; i < source_count; ++i)
-        if (g.vertexPatch[sources[i]] != kNone) seedEndpoint(g, sources[i], uint32_t(i), F, key, none);
-    while (!F.empty()) {
-        const uint32_t u = F.pop().node;
-        relaxNode(g, u, F.label[u].dist, everywhere, F, key, none);
-    }
+        if (g.vertexPatch[sources[i]] != kNone) seedEndpoint(g, sources[i], uint32_t(i), ws.forward, key, none);
+    ws.slice = FieldSlice{gen, Search, 0, sources, source_count, out_distances, out_nearest};
+    return VG_OK;
+}
 
-    for (uint32_t n = 0; n < g.nodeCount; ++n)
-        if (nodeActive(g, n) && F.labelled(n)) {
-            out_distances[g.nodeVertex[n]] = F.label[n].dist;
-            if (out_nearest) out_nearest[g.nodeVertex[n]] = F.route[n].origin;
-        }
-    for (uint32_t p = 0; p < g.secondCount; ++p) fillPatch(g, p, F, ws, out_distances, out_nearest);
-    // A source's own patches also hold the direct entries: paths that touch no node.
-    for (size_t i = 0; i < source_count; ++i) {
-        const uint32_t s = sources[i];
-        if (g.vertexPatch[s] != kNone) {
-            forEachPatchOf(g, s, [&](uint32_t patch, uint32_t slot) {
-                const Patch& p = g.second[patch];
-                for (uint32_t j = 0; j < p.slotCount; ++j) {
-                    const uint32_t id = g.slots[p.slotBegin + j];
-                    const uint32_t v = j < p.nodeCount ? g.nodeVertex[id] : id;
-                    const float d = entry(p, g.secondDistances, slot, j);
-                    if (d < out_distances[v]) {
-                        out_distances[v] = d;
-                        if (out_nearest) out_nearest[v] = uint32_t(i);
-                    }
+// Runs up to `budget` units of the query begun by beginField; true once it is complete.
+bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget) {
+    FieldSlice& s = ws.slice;
+    Frontier& F = ws.forward;
+    float* out = s.out;
+    uint32_t* nearest = s.nearest;
+    for (; budget > 0 && s.phase != Done; --budget) {
+        if (s.phase == Search) {
+            if (!F.empty()) {
+                const Scope everywhere{ws.detail, s.generation, true};
+                const uint32_t u = F.pop().node;
+                relaxNode(g, u, F.label[u].dist, everywhere, F, [](uint32_t, float dv) { return dv; },
+                          [](uint32_t, float) {});
+                // Settled: its label is final (a later pop of u would only rewrite it).
+                if (nodeActive(g, u)) {
+                    out[g.nodeVertex[u]] = F.label[u].dist;
+                    if (nearest) nearest[g.nodeVertex[u]] = F.route[u].origin;
                 }
-            });
+                continue;
+            }
+            s.phase = Fill;
+            s.next = 0;
+        } else if (s.phase == Fill) {
+            if (s.next < g.secondCount) {
+                fillPatch(g, s.next++, F, ws, out, nearest);
+                continue;
+            }
+            s.phase = Direct;
+            s.next = 0;
+        } else if (s.phase == Direct) {
+            // A source's own patches also hold the direct entries: paths that touch no node.
+            if (s.next < s.sourceCount) {
+                const uint32_t i = s.next++;
+                const uint32_t src = s.sources[i];
+                if (g.vertexPatch[src] == kNone) continue;
+                forEachPatchOf(g, src, [&](uint32_t patch, uint32_t slot) {
+                    const Patch& p = g.second[patch];
+                    for (uint32_t j = 0; j < p.slotCount; ++j) {
+                        const uint32_t id = g.slots[p.slotBegin + j];
+                        const uint32_t v = j < p.nodeCount ? g.nodeVertex[id] : id;
+                        const float d = entry(p, g.secondDistances, slot, j);
+                        if (d < out[v]) {
+                            out[v] = d;
+                            if (nearest) nearest[v] = i;
+                        }
+                    }
+                });
+                continue;
+            }
+            // Sources last, so that a vertex listed twice (or a tie at distance 0) names
+            // its first listing.
+            for (size_t i = s.sourceCount; i-- > 0;) {
+                out[s.sources[i]] = 0.0f;
+                if (nearest) nearest[s.sources[i]] = uint32_t(i);
+            }
+            s.phase = Done;
         }
     }
-    // Sources last, so that a vertex listed twice (or a tie at distance 0) names its
-    // first listing.
-    for (size_t i = source_count; i-- > 0;) {
-        out_distances[sources[i]] = 0.0f;
-        if (out_nearest) out_nearest[sources[i]] = uint32_t(i);
-    }
+    return s.phase == Done;
+}
+
+}  // namespace
+
+extern "C" vg_status vg_distance_field_nearest(const vg_graph* graph, vg_workspace* workspace,
+                                               const uint32_t* sources, size_t source_count, float* out_distances,
+                                               uint32_t* out_nearest) {
+    const vg_status st = beginField(graph, workspace, sources, source_count, out_distances, out_nearest);
+    if (st != VG_OK) return st;
+    advanceField(*graph, *workspace, ~uint64_t(0));
     return VG_OK;
 }
 
 extern "C" vg_status vg_distance_field(const vg_graph* graph, vg_workspace* workspace, const uint32_t* sources,
                                        size_t source_count, float* out_distances) {
     return vg_distance_field_nearest(graph, workspace, sources, source_count, out_distances, nullptr);
+}
+
+extern "C" vg_status vg_distance_field_begin(const vg_graph* graph, vg_workspace* workspace, const uint32_t* sources,
+                                             size_t source_count, float* out_distances, uint32_t* out_nearest) {
+    return beginField(graph, workspace, sources, source_count, out_distances, out_nearest);
+}
+
+extern "C" vg_status vg_distance_field_step(const vg_graph* graph, vg_workspace* workspace, uint32_t max_steps,
+                                            int* out_done) {
+    if (out_done == nullptr || graph == nullptr || workspace == nullptr) return VG_ERR_INVALID_ARGUMENT;
+    *out_done = 0;
+    if (workspace->graph != graph) return VG_ERR_WRONG_WORKSPACE;
+    const vg::FieldSlice& s = workspace->slice;
+    if (s.generation == 0 || s.generation != workspace->generation) return VG_ERR_NO_SLICED_QUERY;
+    *out_done = advanceField(*graph, *workspace, max_steps) ? 1 : 0;
+    return VG_OK;
 }

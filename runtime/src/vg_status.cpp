@@ -19,6 +19,7 @@ extern "C" const char* vg_status_string(vg_status status) {
     case VG_ERR_WRONG_WORKSPACE: return "workspace belongs to another graph";
     case VG_ERR_IO: return "cannot open, read or map the file";
     case VG_ERR_OUT_OF_MEMORY: return "allocator returned NULL";
+    case VG_ERR_NO_SLICED_QUERY: return "no time-sliced query in progress on this workspace (none begun, or another query abandoned it)";
     }
     return "unknown status";
 }

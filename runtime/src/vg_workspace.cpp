@@ -52,6 +52,7 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.patchEdges = L.take<vg::CrossingEdge>(vg::kMaxPatchEdges);
     o.graph = &g;
     o.generation = 0;
+    o.slice = vg::FieldSlice{0, 0, 0, nullptr, 0, nullptr, nullptr};
 }
 
 void clearStamps(vg_workspace& ws) {

@@ -111,6 +111,18 @@ private:
     }
 };
 
+// A one-to-all query in progress (vg_distance_field_begin / _step). It is live while its
+// generation is the workspace's: any other query on the workspace abandons it.
+struct FieldSlice {
+    uint32_t generation;  // 0: none started
+    uint32_t phase;       // 0: search, 1: fill patches, 2: sources' own patches, 3: done
+    uint32_t next;        // next patch (Fill) or source (Direct)
+    const uint32_t* sources;
+    size_t sourceCount;
+    float* out;
+    uint32_t* nearest;
+};
+
 }  // namespace vg
 
 struct vg_workspace {
@@ -134,6 +146,7 @@ struct vg_workspace {
     uint32_t* patchBestNode;       // per interior slot of one patch: index of its best node
     uint32_t* patchEdgeBegin;      // per reached node of one patch: first of its crossing edges
     vg::CrossingEdge* patchEdges;
+    vg::FieldSlice slice;          // the time-sliced one-to-all query, if one was started
 };
 
 namespace vg {

@@ -110,6 +110,8 @@ bool runAll(const std::vector<uint8_t>& blobBytes, const char* label) {
     ok = ok && check(vg_distance_field_nearest(g, ws, targets, 4, field.data(), labels.data()),
                      "vg_distance_field_nearest");
     ok = ok && check(vg_nearest(g, ws, 10, targets, 4, &index, &d), "vg_nearest");
+    ok = ok && check(vg_distance_field_begin(g, ws, targets, 4, field.data(), labels.data()), "vg_distance_field_begin");
+    for (int done = 0; ok && !done;) ok = check(vg_distance_field_step(g, ws, 64, &done), "vg_distance_field_step");
     vg_status_string(VG_ERR_CHECKSUM);
     vg_version_string();
     counting = false;

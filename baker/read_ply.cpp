@@ -2,6 +2,7 @@
 // list of "face" and decodes "tristrips" (as in the original igea.ply, which OpenMesh's
 // reader ignores); other properties and elements are skipped.
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "mesh_soup.h"
@@ -83,14 +84,18 @@ public:
         out = double(i);
         return true;
     }
+    // A whole number in int64's range (converting anything else is undefined behaviour).
+    static bool integral(double d, int64_t& out) {
+        if (!(d >= -9.0e18 && d <= 9.0e18) || d != std::floor(d)) return false;
+        out = int64_t(d);
+        return true;
+    }
     bool readInt(PType t, int64_t& out) {
         if (enc_ == Encoding::Ascii) {
             std::string_view tok = text_.anyToken();
             if (TextScanner::parseInt(tok, out)) return true;
             double d;  // some writers print integral values as "3.0"
-            if (!TextScanner::parseDouble(tok, d) || d != double(int64_t(d))) return false;
-            out = int64_t(d);
-            return true;
+            return TextScanner::parseDouble(tok, d) && integral(d, out);
         }
         switch (t) {
             case PType::I8: { int8_t v; if (!raw(&v, 1)) return false; out = v; return true; }
@@ -99,8 +104,8 @@ public:
             case PType::U16: { uint16_t v; if (!raw(&v, 2)) return false; out = v; return true; }
             case PType::I32: { int32_t v; if (!raw(&v, 4)) return false; out = v; return true; }
             case PType::U32: { uint32_t v; if (!raw(&v, 4)) return false; out = v; return true; }
-            case PType::F32: { float v; if (!raw(&v, 4)) return false; out = int64_t(v); return true; }
-            case PType::F64: { double v; if (!raw(&v, 8)) return false; out = int64_t(v); return true; }
+            case PType::F32: { float v; return raw(&v, 4) && integral(v, out); }
+            case PType::F64: { double v; return raw(&v, 8) && integral(v, out); }
             default: return false;
         }
     }

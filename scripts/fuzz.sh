@@ -48,7 +48,8 @@ for t in "${targets[@]}"; do
   ok=1
   ASAN_OPTIONS=abort_on_error=1:detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     "build-fuzz/tests/fuzz/vorogeo_fuzz_$t" "${args[@]}" >"$log" 2>&1 || ok=0
-  logs=("$log" fuzz-*.log)  # with --jobs, each worker writes fuzz-N.log here
+  logs=("$log")
+  [ "$jobs" -gt 1 ] && logs=(fuzz-*.log)  # with --jobs, each worker writes fuzz-N.log here
   execs=$(cat "${logs[@]}" | awk '/stat::number_of_executed_units/ {s += $2} END {print s + 0}')
   if [ $ok -eq 1 ]; then
     echo "fuzz $t: clean, $execs executions, corpus $(ls "$corpus" | wc -l) inputs"
@@ -57,6 +58,6 @@ for t in "${targets[@]}"; do
     echo "fuzz $t: FAILED after $execs executions (log $log, inputs in $findings)" >&2
     cat "${logs[@]}" | grep -E 'ERROR|runtime error|Test unit written|SUMMARY' | head -20 >&2 || true
   fi
-  [ ${#logs[@]} -gt 1 ] && mv fuzz-*.log build-fuzz/ || true
+  for f in fuzz-*.log; do mv "$f" "build-fuzz/$t-$f"; done
 done
 exit $status

@@ -75,7 +75,9 @@ bool membershipsValid(const uint32_t* begin, const Membership* list, uint64_t li
                       const Patch* patches, uint64_t patchCount, const uint32_t* slots) {
     if (begin[0] != 0 || begin[nodes] != listSize) return false;
     for (uint64_t n = 0; n < nodes; ++n) {
-        if (begin[n] > begin[n + 1]) return false;
+        // Each offset within the list, not only the last one: a list is read before the
+        // next offsets are checked.
+        if (begin[n] > begin[n + 1] || begin[n + 1] > listSize) return false;
         for (uint32_t m = begin[n]; m < begin[n + 1]; ++m) {
             if (list[m].patch >= patchCount) return false;
             const Patch& p = patches[list[m].patch];
@@ -163,7 +165,8 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& 
     // Node edges: offsets in order, neighbours in range.
     if (out.nodeEdgeBegin[0] != 0 || out.nodeEdgeBegin[N] != count(g->node_edge())) return VG_ERR_CORRUPT_CONTENT;
     for (uint64_t n = 0; n < N; ++n) {
-        if (out.nodeEdgeBegin[n] > out.nodeEdgeBegin[n + 1]) return VG_ERR_CORRUPT_CONTENT;
+        if (out.nodeEdgeBegin[n] > out.nodeEdgeBegin[n + 1] || out.nodeEdgeBegin[n + 1] > count(g->node_edge()))
+            return VG_ERR_CORRUPT_CONTENT;
         for (uint32_t e = out.nodeEdgeBegin[n]; e < out.nodeEdgeBegin[n + 1]; ++e)
             if (out.nodeEdge[e] >= N) return VG_ERR_CORRUPT_CONTENT;
     }

@@ -28,6 +28,7 @@ public:
         std::error_code ec;
         std::filesystem::remove_all(path_, ec);
     }
+    const std::filesystem::path& path() const { return path_; }
     std::string file(const std::string& name) const { return (path_ / name).string(); }
     std::string write(const std::string& name, const std::string& content) const {
         std::ofstream(file(name), std::ios::binary) << content;
@@ -37,6 +38,14 @@ public:
 private:
     std::filesystem::path path_;
 };
+
+// The whole content of a file ("" if it cannot be read).
+inline std::string readText(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
 
 struct ToolResult {
     int status = -1;
@@ -51,14 +60,8 @@ inline ToolResult runTool(const std::string& args) {
     const int raw = std::system(cmd.c_str());
     ToolResult r;
     r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    auto slurp = [](const std::string& path) {
-        std::ifstream in(path, std::ios::binary);
-        std::stringstream ss;
-        ss << in.rdbuf();
-        return ss.str();
-    };
-    r.out = slurp(outFile);
-    r.err = slurp(errFile);
+    r.out = readText(outFile);
+    r.err = readText(errFile);
     return r;
 }
 

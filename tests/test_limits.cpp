@@ -22,19 +22,12 @@ using namespace vorogeo;
 
 namespace {
 
-std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-std::vector<std::string> filesIn(const test::TempDir& dir, const std::string& probe) {
+// Names of the files in `dir`, sorted.
+std::vector<std::string> filesIn(const test::TempDir& dir) {
     std::vector<std::string> names;
-    for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(probe).parent_path()))
+    for (const auto& e : std::filesystem::directory_iterator(dir.path()))
         names.push_back(e.path().filename().string());
     std::sort(names.begin(), names.end());
-    (void)dir;
     return names;
 }
 
@@ -62,7 +55,7 @@ pid_t startTool(const std::vector<std::string>& args, const std::string& errPath
 bool waitFor(const std::string& path, const std::string& marker, pid_t pid) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
     while (std::chrono::steady_clock::now() < deadline) {
-        if (slurp(path).find(marker) != std::string::npos) return true;
+        if (test::readText(path).find(marker) != std::string::npos) return true;
         int status = 0;
         if (::waitpid(pid, &status, WNOHANG) == pid) return false;
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -120,7 +113,7 @@ TEST_CASE("limits: vorogeo bake --max-memory refuses with a message and writes n
     CHECK(r.status == 1);
     CHECK(r.err.find("--max-memory 2 MiB") != std::string::npos);
     CHECK(r.err.find("nothing written") != std::string::npos);
-    CHECK(filesIn(dir, out) == std::vector<std::string>{"torus.ply"});
+    CHECK(filesIn(dir) == std::vector<std::string>{"torus.ply"});
     r = test::runTool("bake '" + dir.file("torus.ply") + "' -o '" + out + "' --max-memory lots");
     CHECK(r.status == 2);
     CHECK(r.err.find("--max-memory must be a size") != std::string::npos);
@@ -152,9 +145,9 @@ TEST_CASE("interrupts: SIGINT or SIGTERM stop a bake cleanly, SIGKILL leaves no 
         } else {
             REQUIRE(WIFEXITED(status));
             CHECK(WEXITSTATUS(status) == 130);
-            CHECK(slurp(err).find("interrupted; nothing written") != std::string::npos);
+            CHECK(test::readText(err).find("interrupted; nothing written") != std::string::npos);
         }
         // No output, and no temporary file either (the blob is written only at the end).
-        CHECK(filesIn(dir, out) == std::vector<std::string>{"err.txt", "torus.ply"});
+        CHECK(filesIn(dir) == std::vector<std::string>{"err.txt", "torus.ply"});
     }
 }

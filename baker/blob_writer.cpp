@@ -180,6 +180,19 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     std::vector<uint8_t> flags(N, 0);
     for (size_t n = 0; n < N; ++n) flags[n] = secondInactive[nodeVertex[n]] ? 1 : 0;
 
+    // Triangles and half-edge twins, for surface points and paths.
+    const uint32_t F = mesh.faceCount();
+    std::vector<uint32_t> faceVertices(size_t(F) * 3), faceTwin(size_t(F) * 3);
+    for (uint32_t f = 0; f < F; ++f)
+        for (int k = 0; k < 3; ++k) {
+            faceVertices[3 * size_t(f) + k] = mesh.faces[f][k];
+            const int32_t t = mesh.twin[3 * size_t(f) + k];
+            faceTwin[3 * size_t(f) + k] = t < 0 ? UINT32_MAX : uint32_t(t);
+        }
+    std::vector<uint32_t> vertexHalfedge(V, UINT32_MAX);
+    for (uint32_t v = 0; v < V; ++v)
+        if (vertexPatch[v] != UINT32_MAX && mesh.vertexOut[v] >= 0) vertexHalfedge[v] = uint32_t(mesh.vertexOut[v]);
+
     // Exactly what the vectors take (plus headers and padding), before flatbuffers is asked
     // to build something its 32-bit offsets cannot address.
     auto bytesOf = [](const auto& v) { return uint64_t(v.size()) * sizeof(v[0]) + 16; };
@@ -188,12 +201,17 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
                             bytesOf(firstAll) + bytesOf(edgeBegin) + bytesOf(edgeNeighbours) +
                             bytesOf(landmarks.vertices) + bytesOf(landmarks.scales) + bytesOf(landmarks.nodeValues) +
                             bytesOf(secondRecords) + bytesOf(firstRecords) + bytesOf(slots) +
-                            bytesOf(secondDist.bytes) + bytesOf(firstDist.bytes) + 4096,
+                            bytesOf(secondDist.bytes) + bytesOf(firstDist.bytes) + bytesOf(faceVertices) +
+                            bytesOf(faceTwin) + bytesOf(partition.faceSecond) + bytesOf(vertexHalfedge) + 4096,
                         V);
     flatbuffers::FlatBufferBuilder b(size_t(64) << 20);
     auto posV = b.CreateVector(positions);
     auto vpV = b.CreateVector(vertexPatch);
     auto vsV = b.CreateVector(vertexSlot);
+    auto fvV = b.CreateVector(faceVertices);
+    auto ftV = b.CreateVector(faceTwin);
+    auto fpaV = b.CreateVector(partition.faceSecond);
+    auto vhV = b.CreateVector(vertexHalfedge);
     auto nvV = b.CreateVector(nodeVertex);
     auto nfV = b.CreateVector(flags);
     auto nsbV = b.CreateVector(secondBegin);
@@ -216,6 +234,10 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     g.add_positions(posV);
     g.add_vertex_patch(vpV);
     g.add_vertex_slot(vsV);
+    g.add_face_vertices(fvV);
+    g.add_face_twin(ftV);
+    g.add_face_patch(fpaV);
+    g.add_vertex_halfedge(vhV);
     g.add_node_vertex(nvV);
     g.add_node_flags(nfV);
     g.add_node_second_begin(nsbV);

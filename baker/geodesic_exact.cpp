@@ -558,6 +558,67 @@ void ExactWorkspace::propagate(uint32_t id) {
     }
 }
 
+double ExactWorkspace::distanceAt(const SurfacePoint& q, const std::vector<double>& distances) const {
+    const ExactGeodesic& geo = *geo_;
+    const Mesh& m = *geo.mesh_;
+    if (q.face >= m.faceCount()) throw std::invalid_argument("face " + std::to_string(q.face) + " out of range");
+    auto pointOf = [&](const SurfacePoint& sp) {
+        Vec3 p{0, 0, 0};
+        for (int k = 0; k < 3; ++k) p = p + m.positions[m.faces[sp.face][k]] * sp.bary[k];
+        return p;
+    };
+    const Vec3 x = pointOf(q);
+    double best = kInfinity;
+    // Through a corner (a source vertex, a pseudo-source, or any path that reaches it).
+    for (int k = 0; k < 3; ++k) {
+        const uint32_t c = m.faces[q.face][k];
+        best = std::min(best, distances[c] + distance(x, m.positions[c]));
+    }
+    // A source in the face (or on one of its edges, seen from the face across it).
+    for (const SurfacePoint& sp : pointSources_) {
+        bool inFace = sp.face == q.face;
+        for (int k = 0; k < 3 && !inFace; ++k) {
+            const int32_t t = m.twin[3 * sp.face + k];
+            inFace = std::fabs(sp.bary[(k + 2) % 3]) <= 1e-12 && t >= 0 && uint32_t(Mesh::faceOf(t)) == q.face;
+        }
+        if (inFace) best = std::min(best, distance(x, pointOf(sp)));
+    }
+    // Windows entering the face: the straight line from the window's source when it passes
+    // through the window, else through the nearer window end.
+    for (int k = 0; k < 3; ++k) {
+        const int32_t h = int32_t(3 * q.face + k);
+        const int32_t e = geo.edgeOf_[h];
+        const double L = geo.edgeLength_[e];
+        const Vec3 o = m.positions[m.tail(h)];
+        const Vec3 d = m.positions[m.head(h)] - o;
+        if (!(L > 0)) continue;
+        const Vec3 u = d * (1.0 / L);
+        const Vec3 r = x - o;
+        const double qx = dot(r, u), qy = length(cross(u, r));
+        for (uint32_t id = edgeHead_[e]; id != kNone; id = pool_[id].next) {
+            const Window& w = pool_[id];
+            if (w.h != h) continue;
+            double b0 = w.b0, b1 = w.b1, sx = w.sx, sy = w.sy;
+            if (geo.canonical_[e] != h) {
+                b0 = L - w.b1;
+                b1 = L - w.b0;
+                sx = L - w.sx;
+                sy = -w.sy;
+            }
+            const double xc = qy - sy > 0 ? sx + (qx - sx) * (-sy) / (qy - sy) : qx;
+            double dw;
+            if (xc >= b0 && xc <= b1) {
+                dw = std::hypot(qx - sx, qy - sy);
+            } else {
+                const double b = xc < b0 ? b0 : b1;
+                dw = std::hypot(b - sx, sy) + std::hypot(qx - b, qy);
+            }
+            best = std::min(best, w.sigma + dw);
+        }
+    }
+    return best;
+}
+
 void ExactWorkspace::run(const ExactGeodesic& geo, const ExactQuery& query,
                          std::vector<double>& distances, ExactStats* stats) {
     const Mesh& m = *geo.mesh_;
@@ -585,7 +646,9 @@ void ExactWorkspace::run(const ExactGeodesic& geo, const ExactQuery& query,
     isTarget_.assign(query.targets.empty() ? 0 : nv, 0);
     for (uint32_t t : query.targets) isTarget_[t] = 1;
 
+    pointSources_.clear();
     for (const GeodesicSource& s : query.sources) {
+        if (!s.isVertex) pointSources_.push_back(s.point);
         if (s.isVertex) {
             distances[s.vertex] = 0.0;
             queue_.push({0.0, s.vertex, kVertexEvent});

@@ -112,6 +112,12 @@ public:
     void run(const ExactGeodesic& geo, const ExactQuery& query, std::vector<double>& distances,
              ExactStats* stats = nullptr);
 
+    // After run(): the exact distance from the run's sources to surface point q (a face of
+    // the same domain), from the final windows on q's face's edges, the face's corners
+    // (`distances`: what run() returned) and any source inside the face. Exact for a
+    // complete run (no maxDistance or targets).
+    double distanceAt(const SurfacePoint& q, const std::vector<double>& distances) const;
+
     // Bytes of scratch memory the workspace holds (it keeps its buffers between runs).
     size_t memoryBytes() const;
 
@@ -154,6 +160,7 @@ private:
     std::vector<uint32_t> overlap_;
     std::vector<Piece> pieces_;
     std::vector<double>* dist_ = nullptr;
+    std::vector<SurfacePoint> pointSources_;  // the last run's surface-point sources
     std::vector<uint8_t> isTarget_;
     double maxDistance_ = kInfinity;
     bool targetsDirty_ = false;

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <random>
 
 #include "generators.h"
 #include "geodesic_exact.h"
@@ -128,6 +129,91 @@ TEST_CASE("surface-point sources on a plane give Euclidean distances", "[exact]"
         q.sources.push_back(GeodesicSource::atPoint(p));
         ws.run(geo, q, d);
         for (uint32_t v = 0; v < m.vertexCount(); ++v) CHECK(d[v] == Approx(distance(pos, m.positions[v])).epsilon(1e-12));
+    }
+}
+
+namespace {
+
+SurfacePoint randomPoint(const Mesh& m, std::mt19937_64& rng) {
+    std::uniform_int_distribution<uint32_t> face(0, m.faceCount() - 1);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    double a = unit(rng), b = unit(rng);
+    if (a + b > 1) {
+        a = 1 - a;
+        b = 1 - b;
+    }
+    return SurfacePoint{face(rng), {a, b, 1 - a - b}};
+}
+
+Vec3 positionOf(const Mesh& m, const SurfacePoint& p) {
+    Vec3 x{0, 0, 0};
+    for (int k = 0; k < 3; ++k) x = x + m.positions[m.faces[p.face][k]] * p.bary[k];
+    return x;
+}
+
+}  // namespace
+
+TEST_CASE("distances at surface points: Euclidean on a plane, unrolled on a cylinder", "[exact]") {
+    std::mt19937_64 rng(11);
+    SECTION("plane, point and vertex sources, points inside faces, on edges and at corners") {
+        const Mesh m = planeGrid(16, 13, 1.0, 0.5, 5);
+        ExactGeodesic geo(m);
+        ExactWorkspace ws;
+        std::vector<double> d;
+        for (int run = 0; run < 6; ++run) {
+            ExactQuery q;
+            const SurfacePoint src = run == 5 ? SurfacePoint{9, {0.0, 0.5, 0.5}} : randomPoint(m, rng);
+            q.sources.push_back(run == 4 ? GeodesicSource::atVertex(40) : GeodesicSource::atPoint(src));
+            const Vec3 s = run == 4 ? m.positions[40] : positionOf(m, src);
+            ws.run(geo, q, d);
+            for (int i = 0; i < 200; ++i) {
+                SurfacePoint t = randomPoint(m, rng);
+                if (i % 10 == 1) t.bary[0] = 0, t.bary[1] = 0.3, t.bary[2] = 0.7;  // on an edge
+                if (i % 10 == 2) t.bary[0] = 1, t.bary[1] = 0, t.bary[2] = 0;      // at a corner
+                const double want = distance(s, positionOf(m, t));
+                INFO("run " << run << " target face " << t.face);
+                CHECK(ws.distanceAt(t, d) == Approx(want).epsilon(1e-12).margin(1e-12));
+            }
+        }
+    }
+    SECTION("cylinder") {
+        const uint32_t segments = 24, rings = 10;
+        const double radius = 1.0, height = 3.0;
+        const Mesh m = openCylinder(radius, height, segments, rings);
+        const double chord = 2 * radius * std::sin(M_PI / segments), perimeter = segments * chord;
+        // Unrolled coordinates of a point: arc position along the polygon, height.
+        auto unrolled = [&](const SurfacePoint& p, double& u, double& z) {
+            u = 0;
+            z = 0;
+            const uint32_t* c = &m.faces[p.face][0];
+            double base = c[0] % segments;
+            for (int k = 0; k < 3; ++k) {
+                double col = c[k] % segments;
+                if (col - base > segments / 2.0) col -= segments;
+                if (base - col > segments / 2.0) col += segments;
+                u += p.bary[k] * col * chord;
+                z += p.bary[k] * double(c[k] / segments) * height / rings;
+            }
+        };
+        ExactGeodesic geo(m);
+        ExactWorkspace ws;
+        std::vector<double> d;
+        for (int run = 0; run < 4; ++run) {
+            const SurfacePoint src = randomPoint(m, rng);
+            ExactQuery q;
+            q.sources.push_back(GeodesicSource::atPoint(src));
+            ws.run(geo, q, d);
+            double su, sz;
+            unrolled(src, su, sz);
+            for (int i = 0; i < 200; ++i) {
+                const SurfacePoint t = randomPoint(m, rng);
+                double tu, tz;
+                unrolled(t, tu, tz);
+                double du = std::fmod(std::fabs(tu - su), perimeter);
+                du = std::min(du, perimeter - du);
+                CHECK(ws.distanceAt(t, d) == Approx(std::hypot(du, tz - sz)).epsilon(1e-9));
+            }
+        }
     }
 }
 

@@ -80,6 +80,14 @@ bool openAndQuery(const std::vector<uint8_t>& blob) {
     REQUIRE(vg_distance_field(g, ws, picks, 3, field.data()) == VG_OK);
     size_t index = 0;
     REQUIRE(vg_nearest(g, ws, picks[0], picks + 1, 2, &index, &d) == VG_OK);
+    const uint32_t F = vg_face_count(g);
+    if (F > 0) {
+        const vg_point pts[2] = {{0, {0.2f, 0.3f, 0.5f}}, {F - 1, {0.6f, 0.3f, 0.1f}}};
+        REQUIRE(vg_point_distance(g, ws, &pts[0], &pts[1], &d) == VG_OK);
+        REQUIRE(vg_point_distance_field(g, ws, pts, 2, field.data(), nullptr) == VG_OK);
+        size_t found = 0;
+        REQUIRE(vg_point_k_nearest(g, ws, &pts[0], pts, 2, 1, &index, &d, &found) == VG_OK);
+    }
     return true;
 }
 
@@ -332,7 +340,7 @@ TEST_CASE("runtime: arguments are checked and named by status codes", "[runtime]
     vg_workspace* w = nullptr;
     CHECK(vg_workspace_init(graph, small.data(), small.size(), &w) == VG_ERR_BUFFER_TOO_SMALL);
     CHECK(w == nullptr);
-    for (int s = 0; s <= 15; ++s) CHECK(std::string(vg_status_string(vg_status(s))) != "unknown status");
+    for (int s = 0; s <= 16; ++s) CHECK(std::string(vg_status_string(vg_status(s))) != "unknown status");
     CHECK(std::string(vg_status_string(vg_status(99))) == "unknown status");
 }
 

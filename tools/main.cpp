@@ -16,6 +16,7 @@ int runExact(int argc, char** argv);
 int runBenchExact(int argc, char** argv);
 int runBake(int argc, char** argv);
 int runEval(int argc, char** argv);
+int runEvalPoints(int argc, char** argv);
 int runRender(int argc, char** argv);
 int runBench(int argc, char** argv);
 int runVoronoi(int argc, char** argv);
@@ -31,6 +32,8 @@ const Command kCommands[] = {
     {"exact", "exact geodesic distances (MMP); check against golden pairs", vorogeo::tools::runExact},
     {"bake", "precompute a mesh's patch graph into a .vgeo blob", vorogeo::tools::runBake},
     {"eval", "accuracy and query time of a baked blob against exact distances", vorogeo::tools::runEval},
+    {"eval-points", "accuracy and query time of surface-point queries against the exact engine",
+     vorogeo::tools::runEvalPoints},
     {"bench", "runtime vs exact engine vs edge Dijkstra on the same queries, with ratios", vorogeo::tools::runBench},
     {"voronoi", "geodesic Voronoi cells by growing spheres (thesis 3.8) vs one labelling query", vorogeo::tools::runVoronoi},
     {"render", "picture of a distance field (runtime, exact, error) as PNG or coloured PLY", vorogeo::tools::runRender},

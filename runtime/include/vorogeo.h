@@ -48,7 +48,7 @@
 #define VG_VERSION_NUMBER ((VG_VERSION_MAJOR << 16) | (VG_VERSION_MINOR << 8) | VG_VERSION_PATCH)
 /* Blob format this library reads. Independent of the library version: it changes only
  * when the bytes of a .vgeo file change meaning (docs/FORMAT.md). */
-#define VG_BLOB_FORMAT_VERSION 2
+#define VG_BLOB_FORMAT_VERSION 3
 
 #ifdef __cplusplus
 extern "C" {
@@ -71,7 +71,9 @@ typedef enum vg_status {
     VG_ERR_WRONG_WORKSPACE = 12,    /* the workspace was made for another graph */
     VG_ERR_IO = 13,                 /* vg_open_file could not open, read or map the file */
     VG_ERR_OUT_OF_MEMORY = 14,      /* the allocator callback returned NULL */
-    VG_ERR_NO_SLICED_QUERY = 15     /* vg_distance_field_step without a live sliced query */
+    VG_ERR_NO_SLICED_QUERY = 15,    /* vg_distance_field_step without a live sliced query */
+    VG_ERR_INVALID_POINT = 16       /* face out of range, or barycentric weights NaN, negative
+                                       or not summing to 1 (beyond VG_BARY_TOLERANCE) */
 } vg_status;
 
 /* Human-readable, static, never NULL. Unknown codes give "unknown status". */
@@ -179,6 +181,55 @@ VG_API vg_status vg_distance_field_step(const vg_graph* graph, vg_workspace* wor
 VG_API vg_status vg_nearest(const vg_graph* graph, vg_workspace* workspace, uint32_t source,
                      const uint32_t* targets, size_t target_count, size_t* out_index,
                      float* out_distance);
+
+/* ------------------------------------------------------------------ surface points */
+
+/* A point on the surface: face index (0 .. vg_face_count() - 1) and barycentric weights of
+ * the face's three vertices (vg_face_vertices order). Weights must be finite, at least
+ * -VG_BARY_TOLERANCE and sum to 1 within VG_BARY_TOLERANCE (they are then clamped to >= 0
+ * and renormalised); otherwise a query returns VG_ERR_INVALID_POINT. A weight of 1 (within
+ * 1e-6) makes the point that vertex, so vertex and point queries agree there. */
+typedef struct vg_point {
+    uint32_t face;
+    float bary[3];
+} vg_point;
+#define VG_BARY_TOLERANCE 1e-4f
+
+VG_API uint32_t vg_face_count(const vg_graph* graph);
+/* The three vertex ids of a face (counter-clockwise). */
+VG_API vg_status vg_face_vertices(const vg_graph* graph, uint32_t face, uint32_t out_vertices[3]);
+/* A point at vertex `vertex` (one of its faces, weight 1 on it); VG_ERR_INVALID_VERTEX for a
+ * vertex out of range or used by no face. */
+VG_API vg_status vg_vertex_point(const vg_graph* graph, uint32_t vertex, vg_point* out_point);
+/* Position of a point in mesh coordinates. */
+VG_API vg_status vg_point_position(const vg_graph* graph, const vg_point* point, float out_xyz[3]);
+
+/* vg_distance / vg_distance_within between surface points. */
+VG_API vg_status vg_point_distance(const vg_graph* graph, vg_workspace* workspace, const vg_point* source,
+                                   const vg_point* target, float* out_distance);
+VG_API vg_status vg_point_distance_within(const vg_graph* graph, vg_workspace* workspace,
+                                          const vg_point* source, const vg_point* target,
+                                          float max_distance, float* out_distance);
+
+/* vg_distance_field_nearest from surface points: distance to every vertex and, when
+ * out_nearest is not NULL, the index of the nearest source (source_count where none). */
+VG_API vg_status vg_point_distance_field(const vg_graph* graph, vg_workspace* workspace,
+                                         const vg_point* sources, size_t source_count,
+                                         float* out_distances, uint32_t* out_nearest);
+
+/* vg_nearest between surface points (ties: the lowest index). */
+VG_API vg_status vg_point_nearest(const vg_graph* graph, vg_workspace* workspace, const vg_point* source,
+                                  const vg_point* targets, size_t target_count, size_t* out_index,
+                                  float* out_distance);
+
+/* The k targets nearest to `source`, closest first (ties: lower index first), with their
+ * distances: out_indices and out_distances have room for k entries; *out_found is
+ * min(k, number of reachable targets), and entries past it are target_count / +infinity.
+ * One search for all of them, stopped as soon as the k-th is known: far cheaper than k
+ * separate queries. Vertices enter as points through vg_vertex_point. */
+VG_API vg_status vg_point_k_nearest(const vg_graph* graph, vg_workspace* workspace, const vg_point* source,
+                                    const vg_point* targets, size_t target_count, size_t k,
+                                    size_t* out_indices, float* out_distances, size_t* out_found);
 
 #ifdef __cplusplus
 }

@@ -11,6 +11,7 @@
 // reduced edge lengths: no undiscovered path is shorter than topForward + topBackward.
 // Quantisation can make a stored length a hair shorter than a bound; a node
 // whose label drops after it was settled is simply queued again.
+#include "vg_fan.h"
 #include "vg_query.h"
 #include "vg_lower_bound.h"
 #include "vg_search.h"
@@ -19,26 +20,43 @@ namespace {
 
 using namespace vg;
 
-float pointToPoint(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance) {
+// One order for both directions of a pair, so that d(s, t) and d(t, s) are the same number.
+bool endpointLess(const Endpoint& a, const Endpoint& b) {
+    if (a.isVertex() != b.isVertex()) return a.isVertex();
+    if (a.isVertex()) return a.vertex < b.vertex;
+    if (a.face != b.face) return a.face < b.face;
+    for (int k = 0; k < 3; ++k)
+        if (a.weight[k] != b.weight[k]) return a.weight[k] < b.weight[k];
+    return false;
+}
+
+bool sameEndpoint(const Endpoint& a, const Endpoint& b) { return !endpointLess(a, b) && !endpointLess(b, a); }
+
+float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float maxDistance) {
     const float inf = __builtin_inff();
-    if (s == t) return 0.0f;
-    if (s > t) {  // one order for both, so that d(s, t) and d(t, s) are the same number
-        const uint32_t x = s;
+    if (sameEndpoint(s, t)) return 0.0f;
+    if (endpointLess(t, s)) {
+        const Endpoint x = s;
         s = t;
         t = x;
     }
-    if (g.vertexPatch[s] == kNone || g.vertexPatch[t] == kNone) return inf;
-    if (vertexComponent(g, s) != vertexComponent(g, t)) return inf;
+    if ((s.isVertex() && g.vertexPatch[s.vertex] == kNone) || (t.isVertex() && g.vertexPatch[t.vertex] == kNone))
+        return inf;
+    if (endpointComponent(g, s) != endpointComponent(g, t)) return inf;
 
     const uint32_t gen = beginQuery(ws);
     float best = inf;
-    // Two vertices of one second-layer patch: the stored entry is a path already.
-    forEachPatchOf(g, s, [&](uint32_t ps, uint32_t slotS) {
-        forEachPatchOf(g, t, [&](uint32_t pt, uint32_t slotT) {
-            if (ps == pt) {
-                const float d = entry(g.second[ps], g.secondDistances, slotS, slotT);
-                if (d < best) best = d;
-            }
+    // Two points of one face: the straight segment.
+    if (!s.isVertex() && !t.isVertex() && s.face == t.face) best = distance3(s.position, t.position);
+    // Two points around one vertex: the exact local paths (vg_fan.h).
+    const float local = localPath(g, s, t);
+    if (local < best) best = local;
+    // Two endpoints of one second-layer patch: the stored (or interpolated) entry is a path already.
+    forEachEndpointPatch(g, s, [&](uint32_t ps, uint32_t, auto&& fromS) {
+        forEachEndpointPatch(g, t, [&](uint32_t pt, uint32_t slotT, auto&&) {
+            if (ps != pt) return;
+            const float d = toEndpointInPatch(t, slotT, fromS);
+            if (d < best) best = d;
         });
     });
 
@@ -46,8 +64,8 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, 
     detailAround(g, t, ws.detail, gen);
     const Scope scope{ws.detail, gen, false};
 
-    const float* ps = g.positions + 3 * uint64_t(s);
-    const float* pt = g.positions + 3 * uint64_t(t);
+    const float* ps = s.position;
+    const float* pt = t.position;
     landmarkDistances(g, s, ws.landmarkSource);
     landmarkDistances(g, t, ws.landmarkTarget);
     auto potential = [&](uint32_t node) {
@@ -65,7 +83,7 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, 
     // potentials are halves of lower bounds): such a node is left alone once that reaches
     // the best found, with a margin for the unfolded crossings, which can undercut the
     // best path through a node by a few percent.
-    float bound = euclidean(g, s, t);
+    float bound = distance3(ps, pt);
     const float viaLandmarks = landmarkBound(g, ws.landmarkSource, ws.landmarkTarget);
     if (viaLandmarks > bound) bound = viaLandmarks;
     const float halfBound = 0.5f * bound;
@@ -118,6 +136,25 @@ extern "C" vg_status vg_distance_within(const vg_graph* graph, vg_workspace* wor
     *out_distance = __builtin_inff();
     if (source >= graph->vertexCount || target >= graph->vertexCount) return VG_ERR_INVALID_VERTEX;
     if (max_distance != max_distance) return VG_ERR_INVALID_ARGUMENT;  // NaN bound
-    *out_distance = pointToPoint(*graph, *workspace, source, target, max_distance);
+    *out_distance = pointToPoint(*graph, *workspace, vertexEndpoint(*graph, source), vertexEndpoint(*graph, target),
+                                 max_distance);
+    return VG_OK;
+}
+
+extern "C" vg_status vg_point_distance(const vg_graph* graph, vg_workspace* workspace, const vg_point* source,
+                                       const vg_point* target, float* out_distance) {
+    return vg_point_distance_within(graph, workspace, source, target, __builtin_inff(), out_distance);
+}
+
+extern "C" vg_status vg_point_distance_within(const vg_graph* graph, vg_workspace* workspace, const vg_point* source,
+                                              const vg_point* target, float max_distance, float* out_distance) {
+    const vg_status st = vg::checkQuery(graph, workspace, out_distance);
+    if (st != VG_OK) return st;
+    *out_distance = __builtin_inff();
+    if (source == nullptr || target == nullptr || max_distance != max_distance) return VG_ERR_INVALID_ARGUMENT;
+    vg::Endpoint s, t;
+    if (vg::resolvePoint(*graph, *source, s) != VG_OK || vg::resolvePoint(*graph, *target, t) != VG_OK)
+        return VG_ERR_INVALID_POINT;
+    *out_distance = pointToPoint(*graph, *workspace, s, t, max_distance);
     return VG_OK;
 }

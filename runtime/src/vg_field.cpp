@@ -131,15 +131,28 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
 
 enum Phase : uint32_t { Search = 0, Fill = 1, Direct = 2, Done = 3 };
 
-// Checks the arguments, clears the outputs and seeds the search from the sources.
-vg_status beginField(const vg_graph* graph, vg_workspace* workspace, const uint32_t* sources, size_t source_count,
-                     float* out_distances, uint32_t* out_nearest) {
+// Source i of the query as an endpoint; false for a vertex used by no face.
+bool sourceEndpoint(const vg_graph& g, const FieldSlice& s, size_t i, Endpoint& e) {
+    if (s.points) return resolvePoint(g, s.points[i], e) == VG_OK;  // checked by beginField
+    if (g.vertexPatch[s.sources[i]] == kNone) return false;
+    e = vertexEndpoint(g, s.sources[i]);
+    return true;
+}
+
+// Checks the arguments, clears the outputs and seeds the search from the sources (vertex
+// ids, or surface points when `points` is given).
+vg_status beginField(const vg_graph* graph, vg_workspace* workspace, const uint32_t* sources, const vg_point* points,
+                     size_t source_count, float* out_distances, uint32_t* out_nearest) {
     const vg_status st = vg::checkQuery(graph, workspace, out_distances);
     if (st != VG_OK) return st;
-    if (source_count > 0 && sources == nullptr) return VG_ERR_INVALID_ARGUMENT;
+    if (source_count > 0 && sources == nullptr && points == nullptr) return VG_ERR_INVALID_ARGUMENT;
+    if (source_count >= kNone) return VG_ERR_INVALID_ARGUMENT;
     const vg_graph& g = *graph;
-    for (size_t i = 0; i < source_count; ++i)
-        if (sources[i] >= g.vertexCount) return VG_ERR_INVALID_VERTEX;
+    for (size_t i = 0; i < source_count; ++i) {
+        Endpoint e;
+        if (points ? resolvePoint(g, points[i], e) != VG_OK : sources[i] >= g.vertexCount)
+            return points ? VG_ERR_INVALID_POINT : VG_ERR_INVALID_VERTEX;
+    }
 
     vg_workspace& ws = *workspace;
     const uint32_t gen = beginQuery(ws);
@@ -147,11 +160,13 @@ vg_status beginField(const vg_graph* graph, vg_workspace* workspace, const uint3
     for (uint32_t v = 0; v < g.vertexCount; ++v) out_distances[v] = inf;
     if (out_nearest)
         for (uint32_t v = 0; v < g.vertexCount; ++v) out_nearest[v] = uint32_t(source_count);
+    ws.slice = FieldSlice{gen, Search, 0, points ? nullptr : sources, points, source_count, out_distances, out_nearest};
     auto key = [](uint32_t, float dv) { return dv; };
     auto none = [](uint32_t, float) {};
-    for (size_t i = 0; i < source_count; ++i)
-        if (g.vertexPatch[sources[i]] != kNone) seedEndpoint(g, sources[i], uint32_t(i), ws.forward, key, none);
-    ws.slice = FieldSlice{gen, Search, 0, sources, source_count, out_distances, out_nearest};
+    for (size_t i = 0; i < source_count; ++i) {
+        Endpoint e;
+        if (sourceEndpoint(g, ws.slice, i, e)) seedEndpoint(g, e, uint32_t(i), ws.forward, key, none);
+    }
     return VG_OK;
 }
 
@@ -188,14 +203,14 @@ bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget) {
             // A source's own patches also hold the direct entries: paths that touch no node.
             if (s.next < s.sourceCount) {
                 const uint32_t i = s.next++;
-                const uint32_t src = s.sources[i];
-                if (g.vertexPatch[src] == kNone) continue;
-                forEachPatchOf(g, src, [&](uint32_t patch, uint32_t slot) {
+                Endpoint e;
+                if (!sourceEndpoint(g, s, i, e)) continue;
+                forEachEndpointPatch(g, e, [&](uint32_t patch, uint32_t, auto&& dist) {
                     const Patch& p = g.second[patch];
                     for (uint32_t j = 0; j < p.slotCount; ++j) {
                         const uint32_t id = g.slots[p.slotBegin + j];
                         const uint32_t v = j < p.nodeCount ? g.nodeVertex[id] : id;
-                        const float d = entry(p, g.secondDistances, slot, j);
+                        const float d = dist(j);
                         if (d < out[v]) {
                             out[v] = d;
                             if (nearest) nearest[v] = i;
@@ -207,8 +222,11 @@ bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget) {
             // Sources last, so that a vertex listed twice (or a tie at distance 0) names
             // its first listing.
             for (size_t i = s.sourceCount; i-- > 0;) {
-                out[s.sources[i]] = 0.0f;
-                if (nearest) nearest[s.sources[i]] = uint32_t(i);
+                Endpoint e;
+                const uint32_t v = s.points ? (resolvePoint(g, s.points[i], e) == VG_OK ? e.vertex : kNone) : s.sources[i];
+                if (v == kNone) continue;
+                out[v] = 0.0f;
+                if (nearest) nearest[v] = uint32_t(i);
             }
             s.phase = Done;
         }
@@ -221,7 +239,7 @@ bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget) {
 extern "C" vg_status vg_distance_field_nearest(const vg_graph* graph, vg_workspace* workspace,
                                                const uint32_t* sources, size_t source_count, float* out_distances,
                                                uint32_t* out_nearest) {
-    const vg_status st = beginField(graph, workspace, sources, source_count, out_distances, out_nearest);
+    const vg_status st = beginField(graph, workspace, sources, nullptr, source_count, out_distances, out_nearest);
     if (st != VG_OK) return st;
     advanceField(*graph, *workspace, ~uint64_t(0));
     return VG_OK;
@@ -234,7 +252,7 @@ extern "C" vg_status vg_distance_field(const vg_graph* graph, vg_workspace* work
 
 extern "C" vg_status vg_distance_field_begin(const vg_graph* graph, vg_workspace* workspace, const uint32_t* sources,
                                              size_t source_count, float* out_distances, uint32_t* out_nearest) {
-    return beginField(graph, workspace, sources, source_count, out_distances, out_nearest);
+    return beginField(graph, workspace, sources, nullptr, source_count, out_distances, out_nearest);
 }
 
 extern "C" vg_status vg_distance_field_step(const vg_graph* graph, vg_workspace* workspace, uint32_t max_steps,
@@ -245,5 +263,14 @@ extern "C" vg_status vg_distance_field_step(const vg_graph* graph, vg_workspace*
     const vg::FieldSlice& s = workspace->slice;
     if (s.generation == 0 || s.generation != workspace->generation) return VG_ERR_NO_SLICED_QUERY;
     *out_done = advanceField(*graph, *workspace, max_steps) ? 1 : 0;
+    return VG_OK;
+}
+
+extern "C" vg_status vg_point_distance_field(const vg_graph* graph, vg_workspace* workspace, const vg_point* sources,
+                                             size_t source_count, float* out_distances, uint32_t* out_nearest) {
+    if (source_count > 0 && sources == nullptr) return VG_ERR_INVALID_ARGUMENT;
+    const vg_status st = beginField(graph, workspace, nullptr, sources, source_count, out_distances, out_nearest);
+    if (st != VG_OK) return st;
+    advanceField(*graph, *workspace, ~uint64_t(0));
     return VG_OK;
 }

@@ -40,6 +40,11 @@ struct vg_graph {
     const float* positions;          // 3 per vertex
     const uint32_t* vertexPatch;     // home second-layer patch, kNone when unused
     const uint16_t* vertexSlot;
+    uint32_t faceCount;
+    const uint32_t* faceVertices;    // 3 per face; half-edge h = 3f + k runs faceVertices[h] -> next corner
+    const uint32_t* faceTwin;        // 3 per face: opposite half-edge, kNone on a boundary
+    const uint32_t* facePatch;       // per face: its second-layer patch
+    const uint32_t* vertexHalfedge;  // per vertex: an outgoing half-edge (boundary: one without twin)
     const uint32_t* nodeVertex;
     const uint8_t* nodeFlags;
     const uint32_t* nodeSecondBegin;
@@ -100,6 +105,22 @@ inline uint32_t vertexNode(const vg_graph& g, uint32_t v) {
     const uint32_t slot = g.vertexSlot[v];
     return slot < p.nodeCount ? g.slots[p.slotBegin + slot] : kNone;
 }
+
+// Slot of vertex v in second-layer patch `patch`, or kNone when the patch does not hold v.
+inline uint32_t slotIn(const vg_graph& g, uint32_t v, uint32_t patch) {
+    if (g.vertexPatch[v] == patch) return g.vertexSlot[v];
+    const uint32_t node = vertexNode(g, v);
+    if (node == kNone) return kNone;
+    for (uint32_t m = g.nodeSecondBegin[node]; m < g.nodeSecondBegin[node + 1]; ++m)
+        if (g.nodeSecond[m].patch == patch) return g.nodeSecond[m].slot;
+    return kNone;
+}
+
+// Half-edge helpers: h = 3f + k.
+inline uint32_t nextHalfedge(uint32_t h) { return h - h % 3 + (h % 3 + 1) % 3; }
+inline uint32_t prevHalfedge(uint32_t h) { return h - h % 3 + (h % 3 + 2) % 3; }
+inline uint32_t tailOf(const vg_graph& g, uint32_t h) { return g.faceVertices[h]; }
+inline uint32_t headOf(const vg_graph& g, uint32_t h) { return g.faceVertices[nextHalfedge(h)]; }
 
 // The connected component of a used vertex (the parent of its first-layer patch).
 inline uint32_t vertexComponent(const vg_graph& g, uint32_t v) {

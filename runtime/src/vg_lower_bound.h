@@ -3,7 +3,7 @@
 // are rounded down to a step of the landmark's scale, hence the two-step margin).
 #pragma once
 
-#include "vg_graph.h"
+#include "vg_point.h"
 
 namespace vg {
 
@@ -34,6 +34,29 @@ inline void landmarkDistances(const vg_graph& g, uint32_t x, float* out) {
             if (e != __builtin_inff()) take(n, e);
         }
     });
+}
+
+// The same for any endpoint: a surface point through its patch's active nodes.
+inline void landmarkDistances(const vg_graph& g, const Endpoint& e, float* out) {
+    if (e.isVertex()) {
+        landmarkDistances(g, e.vertex, out);
+        return;
+    }
+    const uint32_t K = g.landmarkCount;
+    for (uint32_t k = 0; k < K; ++k) out[k] = __builtin_inff();
+    const Patch& p = g.second[e.patch];
+    for (uint32_t j = 0; j < p.nodeCount; ++j) {
+        const uint32_t n = g.slots[p.slotBegin + j];
+        if (!nodeActive(g, n)) continue;
+        const float offset = pointToSlot(g, e, j);
+        if (offset == __builtin_inff()) continue;
+        const uint16_t* q = g.nodeLandmarks + uint64_t(n) * K;
+        for (uint32_t k = 0; k < K; ++k) {
+            if (q[k] == kLandmarkUnreachable) continue;
+            const float d = float(q[k]) * g.landmarkScale[k] + offset;
+            if (d < out[k]) out[k] = d;
+        }
+    }
 }
 
 // A lower bound of d(a, b) from their landmark distances (0 without landmarks).

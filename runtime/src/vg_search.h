@@ -7,6 +7,7 @@
 // A query endpoint that is not an active node enters the graph through its patch rows.
 #pragma once
 
+#include "vg_point.h"
 #include "vg_workspace.h"
 
 namespace vg {
@@ -110,6 +111,38 @@ inline void seedEndpoint(const vg_graph& g, uint32_t x, uint32_t origin, Frontie
     forEachPatchOf(g, x, [&](uint32_t patch, uint32_t slot) {
         relaxSecondRow(g, patch, slot, offset, origin, f, keyOf, onImprove);
     });
+}
+
+}  // namespace vg
+
+namespace vg {
+
+// Marks the first-layer patches around an endpoint as detailed.
+inline void detailAround(const vg_graph& g, const Endpoint& e, uint32_t* detail, uint32_t generation) {
+    if (e.isVertex()) detailAround(g, e.vertex, detail, generation);
+    else detail[g.second[e.patch].parent] = generation;
+}
+
+// seedEndpoint for any endpoint: a surface point starts at the active nodes of its
+// face's patch, at interpolated distances.
+template <class KeyOf, class OnImprove>
+inline void seedEndpoint(const vg_graph& g, const Endpoint& e, uint32_t origin, Frontier& f, KeyOf&& keyOf,
+                         OnImprove&& onImprove) {
+    if (e.isVertex()) {
+        seedEndpoint(g, e.vertex, origin, f, keyOf, onImprove);
+        return;
+    }
+    const Patch& p = g.second[e.patch];
+    for (uint32_t j = 0; j < p.nodeCount; ++j) {
+        const uint32_t n = g.slots[p.slotBegin + j];
+        if (!nodeActive(g, n)) continue;
+        const float d = pointToSlot(g, e, j);
+        if (d == __builtin_inff() || !f.better(n, d)) continue;
+        const float key = keyOf(n, d);
+        if (key == __builtin_inff()) continue;
+        f.improve(n, d, key, e.patch, origin);
+        onImprove(n, d);
+    }
 }
 
 }  // namespace vg

@@ -87,6 +87,38 @@ bool membershipsValid(const uint32_t* begin, const Membership* list, uint64_t li
     return true;
 }
 
+// Faces: used corners held by the face's patch, twins that pair up along the same edge
+// in opposite directions, and each used vertex's half-edge starting at it. Needs the
+// vertex, node and patch checks above.
+bool facesValid(const vg_graph& g) {
+    const uint64_t H = 3 * uint64_t(g.faceCount);
+    for (uint64_t h = 0; h < H; ++h) {
+        const uint32_t v = g.faceVertices[h];
+        if (v >= g.vertexCount || g.vertexPatch[v] == kNone) return false;
+    }
+    for (uint64_t f = 0; f < g.faceCount; ++f) {
+        const uint32_t patch = g.facePatch[f];
+        if (patch >= g.secondCount) return false;
+        for (uint32_t k = 0; k < 3; ++k)
+            if (slotIn(g, g.faceVertices[3 * f + k], patch) == kNone) return false;
+    }
+    for (uint64_t h = 0; h < H; ++h) {
+        const uint32_t t = g.faceTwin[h];
+        if (t == kNone) continue;
+        if (t >= H || t == h || g.faceTwin[t] != h) return false;
+        if (tailOf(g, t) != headOf(g, uint32_t(h)) || headOf(g, t) != tailOf(g, uint32_t(h))) return false;
+    }
+    for (uint64_t v = 0; v < g.vertexCount; ++v) {
+        const uint32_t h = g.vertexHalfedge[v];
+        if (g.vertexPatch[v] == kNone) {
+            if (h != kNone) return false;
+            continue;
+        }
+        if (h >= H || g.faceVertices[h] != v) return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& graph) {
@@ -115,6 +147,15 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& 
     out.positions = raw(g->positions());
     out.vertexPatch = raw(g->vertex_patch());
     out.vertexSlot = raw(g->vertex_slot());
+    const uint64_t F = count(g->face_patch());
+    if (F >= kNone / 3 || count(g->face_vertices()) != 3 * F || count(g->face_twin()) != 3 * F ||
+        count(g->vertex_halfedge()) != V)
+        return VG_ERR_CORRUPT_CONTENT;
+    out.faceCount = uint32_t(F);
+    out.faceVertices = raw(g->face_vertices());
+    out.faceTwin = raw(g->face_twin());
+    out.facePatch = raw(g->face_patch());
+    out.vertexHalfedge = raw(g->vertex_halfedge());
     out.nodeVertex = raw(g->node_vertex());
     out.nodeFlags = raw(g->node_flags());
     out.nodeSecondBegin = raw(g->node_second_begin());
@@ -139,7 +180,8 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& 
         !aligned(out.nodeVertex) || !aligned(out.nodeSecondBegin) || !aligned(out.nodeSecond) ||
         !aligned(out.nodeFirstBegin) || !aligned(out.nodeFirst) || !aligned(out.nodeEdgeBegin) ||
         !aligned(out.nodeEdge) || !aligned(out.landmarkScale) || !aligned(out.nodeLandmarks) ||
-        !aligned(out.second) || !aligned(out.first) || !aligned(out.slots))
+        !aligned(out.second) || !aligned(out.first) || !aligned(out.slots) || !aligned(out.faceVertices) ||
+        !aligned(out.faceTwin) || !aligned(out.facePatch) || !aligned(out.vertexHalfedge))
         return VG_ERR_CORRUPT_STRUCTURE;
     for (uint64_t k = 0; k < K; ++k)
         if (!finite(out.landmarkScale[k]) || out.landmarkScale[k] < 0.0f || g->landmark_vertex()->Get(k) >= V)
@@ -190,6 +232,8 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& 
     }
     for (uint64_t n = 0; n < N; ++n)
         if (out.vertexPatch[out.nodeVertex[n]] == kNone) return VG_ERR_CORRUPT_CONTENT;
+
+    if (!facesValid(out)) return VG_ERR_CORRUPT_CONTENT;
 
     graph = out;
     return VG_OK;

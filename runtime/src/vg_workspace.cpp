@@ -50,9 +50,10 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.patchBestNode = L.take<uint32_t>(kMaxPatchSlots);
     o.patchEdgeBegin = L.take<uint32_t>(kMaxPatchSlots + 1);
     o.patchEdges = L.take<vg::CrossingEdge>(vg::kMaxPatchEdges);
+    o.targetEndpoints = L.take<vg::Endpoint>(vg::kTargetChunk);
     o.graph = &g;
     o.generation = 0;
-    o.slice = vg::FieldSlice{0, 0, 0, nullptr, 0, nullptr, nullptr};
+    o.slice = vg::FieldSlice{0, 0, 0, nullptr, nullptr, 0, nullptr, nullptr};
 }
 
 void clearStamps(vg_workspace& ws) {

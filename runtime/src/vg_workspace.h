@@ -4,13 +4,14 @@
 // clears arrays (one increment per query; a full reset once every 2^32 queries).
 #pragma once
 
-#include "vg_graph.h"
+#include "vg_point.h"
 
 namespace vg {
 
 constexpr uint32_t kFirstLayerBit = 0x80000000u;
 
-constexpr uint32_t kMaxPatchEdges = 4096;  // border edges unfolded per patch (more are skipped)
+constexpr uint32_t kMaxPatchEdges = 4096;
+constexpr uint32_t kTargetChunk = 2048;    // surface-point targets resolved at once (k-nearest)  // border edges unfolded per patch (more are skipped)
 
 // A border edge of the patch being filled, from a reached node to a neighbour node: the
 // neighbour's slot, the edge length, the neighbour's distance and the unfolded source
@@ -117,7 +118,8 @@ struct FieldSlice {
     uint32_t generation;  // 0: none started
     uint32_t phase;       // 0: search, 1: fill patches, 2: sources' own patches, 3: done
     uint32_t next;        // next patch (Fill) or source (Direct)
-    const uint32_t* sources;
+    const uint32_t* sources;  // vertex sources, or NULL ...
+    const vg_point* points;   // ... for surface-point sources
     size_t sourceCount;
     float* out;
     uint32_t* nearest;
@@ -146,6 +148,7 @@ struct vg_workspace {
     uint32_t* patchBestNode;       // per interior slot of one patch: index of its best node
     uint32_t* patchEdgeBegin;      // per reached node of one patch: first of its crossing edges
     vg::CrossingEdge* patchEdges;
+    vg::Endpoint* targetEndpoints; // kTargetChunk resolved targets (vg_point_k_nearest)
     vg::FieldSlice slice;          // the time-sliced one-to-all query, if one was started
 };
 

@@ -21,7 +21,7 @@ namespace {
 constexpr size_t kMaxOpenMemory = size_t(64) << 20;  // the harness's budget, not a runtime limit
 
 void check(vg_status st) {
-    if (st < VG_OK || st > VG_ERR_NO_SLICED_QUERY) std::abort();
+    if (st < VG_OK || st > VG_ERR_INVALID_POINT) std::abort();
 }
 
 // Reads little pieces of the input to steer the queries; zeros once it runs out.
@@ -41,6 +41,21 @@ uint32_t vertex(Steer& s, uint32_t V) {
     if (r % 16 == 0) return V + r % 3;
     if (r % 16 == 1) return 0xFFFFFFFFu;
     return V ? r % V : r;
+}
+
+// A surface point: mostly valid, sometimes a face out of range or weights that are NaN,
+// negative or off a sum of 1.
+vg_point point(Steer& s, uint32_t F) {
+    const uint32_t r = s.u32();
+    vg_point p;
+    p.face = r % 16 == 0 ? F + r % 3 : (F ? s.u32() % F : s.u32());
+    const float a = float(s.u32() % 1001) / 1000.0f, b = float(s.u32() % 1001) / 1000.0f * (1.0f - a);
+    p.bary[0] = a;
+    p.bary[1] = b;
+    p.bary[2] = 1.0f - a - b;
+    if (r % 16 == 1) p.bary[r % 3] = NAN;
+    if (r % 16 == 2) p.bary[0] -= 0.01f;
+    return p;
 }
 
 float bound(Steer& s) {
@@ -74,6 +89,28 @@ void queryEverything(const vg_graph* g, const uint8_t* data, size_t size) {
     if (whole == VG_OK)
         for (uint32_t i = 0; i < V; ++i)
             if (std::isnan(field[i]) || field[i] < 0) std::abort();  // distances are never NaN or negative
+    // Surface points: every query kind.
+    const uint32_t F = vg_face_count(g);
+    vg_point pts[6];
+    for (vg_point& p : pts) p = point(steer, F);
+    check(vg_point_distance(g, ws, &pts[0], &pts[1], &d));
+    check(vg_point_distance_within(g, ws, &pts[1], &pts[2], bound(steer), &d));
+    check(vg_point_nearest(g, ws, &pts[0], pts + 1, 5, &index, &d));
+    size_t kIndex[3], found = 0;
+    float kDist[3];
+    check(vg_point_k_nearest(g, ws, &pts[0], pts + 1, 5, 3, kIndex, kDist, &found));
+    std::vector<float> pointField(V);
+    std::vector<uint32_t> pointLabels(V);
+    const vg_status fieldStatus = vg_point_distance_field(g, ws, pts, 2, pointField.data(), pointLabels.data());
+    check(fieldStatus);
+    if (fieldStatus == VG_OK)
+        for (uint32_t i = 0; i < V; ++i)
+            if (std::isnan(pointField[i]) || pointField[i] < 0) std::abort();
+    float xyz[3];
+    check(vg_point_position(g, &pts[3], xyz));
+    vg_point at;
+    check(vg_vertex_point(g, vertex(steer, V), &at));
+
     // The time-sliced query fails the same way, or gives the same bits.
     std::vector<float> sliced(V);
     std::vector<uint32_t> slicedLabels(V);

@@ -112,6 +112,18 @@ bool runAll(const std::vector<uint8_t>& blobBytes, const char* label) {
     ok = ok && check(vg_nearest(g, ws, 10, targets, 4, &index, &d), "vg_nearest");
     ok = ok && check(vg_distance_field_begin(g, ws, targets, 4, field.data(), labels.data()), "vg_distance_field_begin");
     for (int done = 0; ok && !done;) ok = check(vg_distance_field_step(g, ws, 64, &done), "vg_distance_field_step");
+    // Surface points (points declared before counting started: nothing here may allocate).
+    const uint32_t F = ok ? vg_face_count(g) : 0;
+    vg_point pts[4];
+    for (uint32_t i = 0; i < 4; ++i) pts[i] = vg_point{(i * 2654435761u) % (F ? F : 1), {0.2f, 0.3f, 0.5f}};
+    ok = ok && F > 0 && check(vg_point_distance(g, ws, &pts[0], &pts[1], &d), "vg_point_distance");
+    ok = ok && check(vg_point_distance_within(g, ws, &pts[1], &pts[2], 0.5f, &d), "vg_point_distance_within");
+    ok = ok && check(vg_point_distance_field(g, ws, pts, 2, field.data(), labels.data()), "vg_point_distance_field");
+    ok = ok && check(vg_point_nearest(g, ws, &pts[0], pts + 1, 3, &index, &d), "vg_point_nearest");
+    size_t kIndex[2], found = 0;
+    float kDist[2];
+    ok = ok && check(vg_point_k_nearest(g, ws, &pts[3], pts, 3, 2, kIndex, kDist, &found), "vg_point_k_nearest");
+    ok = ok && check(vg_vertex_point(g, 5, &pts[0]), "vg_vertex_point");
     vg_status_string(VG_ERR_CHECKSUM);
     vg_version_string();
     counting = false;

@@ -1,0 +1,252 @@
+// Surface-point queries of the runtime (vg_point_*): agreement with vertex queries at
+// vertices, exact answers where the local geometry decides them, accuracy against the
+// exact engine run from surface points, k-nearest, and bad points.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <random>
+
+#include "bake.h"
+#include "generators.h"
+#include "runtime_graph.h"
+#include "runtime_stats.h"
+#include "surface_points.h"
+#include "vorogeo.h"
+
+using namespace vorogeo;
+using tools::RuntimeGraph;
+using tools::RuntimeWorkspace;
+
+namespace {
+
+struct Baked {
+    Mesh mesh;
+    RuntimeGraph graph;
+};
+
+// One bake per generated mesh, shared by the test cases of one process.
+const Baked& baked(const char* name) {
+    static std::map<std::string, std::unique_ptr<Baked>> cache;
+    std::unique_ptr<Baked>& slot = cache[name];
+    if (!slot) {
+        slot = std::make_unique<Baked>();
+        const std::string n = name;
+        slot->mesh = n == "plane" ? planeGrid(40, 40, 2.0, 0.3, 9) : n == "two" ? twoComponents() : bumpyTorus(60, 30);
+        BakeOptions o;
+        BakeReport report;
+        std::string error;
+        REQUIRE(slot->graph.open(bakeMesh(slot->mesh, o, report, nullptr), error));
+    }
+    return *slot;
+}
+
+float pointDistance(const RuntimeGraph& g, const RuntimeWorkspace& ws, const vg_point& a, const vg_point& b) {
+    float d = -1;
+    REQUIRE(vg_point_distance(g.graph(), ws.get(), &a, &b, &d) == VG_OK);
+    return d;
+}
+
+Vec3 positionOf(const Mesh& m, const SurfacePoint& p) {
+    Vec3 x{0, 0, 0};
+    for (int k = 0; k < 3; ++k) x = x + m.positions[m.faces[p.face][k]] * p.bary[k];
+    return x;
+}
+
+}  // namespace
+
+TEST_CASE("points: a point at a vertex answers as the vertex in every query", "[points]") {
+    const Baked& b = baked("bumpy");
+    RuntimeWorkspace ws(b.graph);
+    const vg_graph* g = b.graph.graph();
+    std::mt19937 rng(3);
+    std::uniform_int_distribution<uint32_t> pick(0, b.mesh.vertexCount() - 1);
+    for (int i = 0; i < 40; ++i) {
+        const uint32_t s = pick(rng), t = pick(rng);
+        vg_point ps, pt;
+        REQUIRE(vg_vertex_point(g, s, &ps) == VG_OK);
+        REQUIRE(vg_vertex_point(g, t, &pt) == VG_OK);
+        CHECK(pointDistance(b.graph, ws, ps, pt) == ws.distance(s, t));
+        float within = 0, bound = 0.5f * ws.distance(s, t);
+        REQUIRE(vg_point_distance_within(g, ws.get(), &ps, &pt, bound, &within) == VG_OK);
+        float vertexWithin = 0;
+        REQUIRE(vg_distance_within(g, ws.get(), s, t, bound, &vertexWithin) == VG_OK);
+        CHECK(within == vertexWithin);
+    }
+    const uint32_t sources[3] = {pick(rng), pick(rng), pick(rng)};
+    vg_point points[3];
+    for (int k = 0; k < 3; ++k) REQUIRE(vg_vertex_point(g, sources[k], &points[k]) == VG_OK);
+    const uint32_t V = b.mesh.vertexCount();
+    std::vector<float> fromVertices(V), fromPoints(V);
+    std::vector<uint32_t> nearVertices(V), nearPoints(V);
+    REQUIRE(vg_distance_field_nearest(g, ws.get(), sources, 3, fromVertices.data(), nearVertices.data()) == VG_OK);
+    REQUIRE(vg_point_distance_field(g, ws.get(), points, 3, fromPoints.data(), nearPoints.data()) == VG_OK);
+    CHECK(fromPoints == fromVertices);
+    CHECK(nearPoints == nearVertices);
+}
+
+TEST_CASE("points: exact where the local geometry decides, symmetric everywhere", "[points]") {
+    const Baked& b = baked("plane");
+    RuntimeWorkspace ws(b.graph);
+    // On a plane the geodesic is the straight segment: between points of one face, of faces
+    // around one vertex (the fan paths) and, through the patch rows, farther apart.
+    const std::vector<SurfacePoint> pts = tools::randomSurfacePoints(b.mesh, 400, 5);
+    double worstNear = 0, worstFar = 0, sumFar = 0;
+    size_t far = 0;
+    for (size_t i = 0; i + 1 < pts.size(); i += 2) {
+        const SurfacePoint& a = pts[i];
+        // A neighbour of a: the same face, or a face around one of its corners.
+        SurfacePoint near = pts[i + 1];
+        const uint32_t corner = b.mesh.faces[a.face][i % 3];
+        std::vector<uint32_t> around;
+        for (uint32_t f = 0; f < b.mesh.faceCount(); ++f)
+            for (int k = 0; k < 3; ++k)
+                if (b.mesh.faces[f][k] == corner) around.push_back(f);
+        near.face = around[(i / 2) % around.size()];
+        for (const SurfacePoint& t : {near, pts[i + 1]}) {
+            const vg_point pa = tools::toRuntimePoint(a), pt = tools::toRuntimePoint(t);
+            const float d = pointDistance(b.graph, ws, pa, pt);
+            CHECK(d == pointDistance(b.graph, ws, pt, pa));
+            const double want = distance(positionOf(b.mesh, a), positionOf(b.mesh, t));
+            const double err = std::fabs(d - want) / std::max(want, 1e-9);
+            if (&t == &near) worstNear = std::max(worstNear, err);
+            else {
+                worstFar = std::max(worstFar, err);
+                sumFar += err;
+                ++far;
+            }
+        }
+    }
+    // Random pairs bend at a graph node where their segment crosses a patch border next
+    // to a third patch (as vertex pairs do): a few percent at worst, for short pairs.
+    INFO("worst relative error: neighbours " << worstNear << ", random pairs " << worstFar << " (mean "
+                                             << sumFar / far << ")");
+    CHECK(worstNear < 1e-4);
+    CHECK(sumFar / far < 0.002);
+    CHECK(worstFar < 0.04);
+}
+
+TEST_CASE("points: accuracy against the exact engine run from surface points", "[points]") {
+    const Baked& b = baked("bumpy");
+    RuntimeWorkspace ws(b.graph);
+    const std::vector<tools::PointPair> pairs = tools::exactPointPairs(b.mesh, 1000, 50, 17);
+    std::vector<tools::DistancePair> asPairs;
+    std::vector<double> values;
+    for (const tools::PointPair& p : pairs) {
+        values.push_back(pointDistance(b.graph, ws, tools::toRuntimePoint(p.source), tools::toRuntimePoint(p.target)));
+        asPairs.push_back({p.source.face, p.target.face, p.distance});
+    }
+    const tools::AccuracyReport r = tools::errorStatistics(asPairs, values);
+    INFO("mean " << r.meanRel << " p99 " << r.p99Rel << " max " << r.maxRel);
+    CHECK(r.pairs == pairs.size());
+    CHECK(r.meanRel < 0.005);
+    CHECK(r.maxRel < 0.06);
+    // The field from a point agrees with point-to-point at the vertices (both are the same
+    // graph distance up to where the border crossings are unfolded).
+    const vg_point src = tools::toRuntimePoint(pairs[0].source);
+    std::vector<float> field(b.mesh.vertexCount());
+    REQUIRE(vg_point_distance_field(b.graph.graph(), ws.get(), &src, 1, field.data(), nullptr) == VG_OK);
+    double worst = 0;
+    for (uint32_t v = 0; v < b.mesh.vertexCount(); v += 7) {
+        vg_point pv;
+        REQUIRE(vg_vertex_point(b.graph.graph(), v, &pv) == VG_OK);
+        const float d = pointDistance(b.graph, ws, src, pv);
+        worst = std::max(worst, std::fabs(double(d) - field[v]) / std::max(double(d), 1e-9));
+    }
+    CHECK(worst < 0.03);
+}
+
+TEST_CASE("points: k nearest are the k smallest distances, in order, across target chunks", "[points]") {
+    const Baked& b = baked("bumpy");
+    RuntimeWorkspace ws(b.graph);
+    const vg_graph* g = b.graph.graph();
+    std::vector<vg_point> targets;
+    for (const SurfacePoint& p : tools::randomSurfacePoints(b.mesh, 3000, 23)) targets.push_back(tools::toRuntimePoint(p));
+    targets[10] = targets[20];  // a duplicate: ties go to the lower index
+    const vg_point source = tools::toRuntimePoint(tools::randomSurfacePoints(b.mesh, 1, 29)[0]);
+    const size_t k = 16;
+    std::vector<size_t> index(k);
+    std::vector<float> dist(k);
+    size_t found = 0;
+    REQUIRE(vg_point_k_nearest(g, ws.get(), &source, targets.data(), targets.size(), k, index.data(), dist.data(),
+                               &found) == VG_OK);
+    REQUIRE(found == k);
+    // Reference: every target's point-to-point distance.
+    std::vector<std::pair<float, size_t>> all;
+    for (size_t i = 0; i < targets.size(); ++i) all.push_back({pointDistance(b.graph, ws, source, targets[i]), i});
+    std::sort(all.begin(), all.end());
+    // The same distances as point-to-point up to the unfolded border crossings that only
+    // point-to-point adds (shorter by less than kUnfoldSlack, 15%), so the same set up to such ties.
+    for (size_t j = 0; j < k; ++j) {
+        INFO("rank " << j);
+        if (j > 0) CHECK(dist[j] >= dist[j - 1]);
+        CHECK(std::count(index.begin(), index.end(), index[j]) == 1);
+        const float p2p = pointDistance(b.graph, ws, source, targets[index[j]]);
+        CHECK(p2p <= dist[j] * 1.0001f);
+        CHECK(p2p >= dist[j] / 1.15f);  // kUnfoldSlack bounds what a crossing saves
+        CHECK(dist[j] <= all[j].first * 1.15f);
+    }
+    for (size_t j = k; j < all.size(); ++j)
+        if (std::find(index.begin(), index.end(), all[j].second) == index.end()) CHECK(all[j].first >= dist[k - 1] / 1.15f);
+    // The nearest is the first of the k.
+    size_t nearest = 0;
+    float nd = 0;
+    REQUIRE(vg_point_nearest(g, ws.get(), &source, targets.data(), targets.size(), &nearest, &nd) == VG_OK);
+    CHECK(nearest == index[0]);
+    CHECK(nd == dist[0]);
+    // Fewer reachable targets than k: the rest is target_count / +inf.
+    std::vector<size_t> index2(5);
+    std::vector<float> dist2(5);
+    REQUIRE(vg_point_k_nearest(g, ws.get(), &source, targets.data(), 3, 5, index2.data(), dist2.data(), &found) == VG_OK);
+    CHECK(found == 3);
+    CHECK(index2[3] == 3);
+    CHECK(std::isinf(dist2[4]));
+}
+
+TEST_CASE("points: other components are at +infinity; bad points get VG_ERR_INVALID_POINT", "[points]") {
+    const Baked& b = baked("two");
+    RuntimeWorkspace ws(b.graph);
+    const vg_graph* g = b.graph.graph();
+    // A face of each component: follow the field from face 0's first vertex.
+    const std::vector<float> field = ws.field({b.mesh.faces[0][0]});
+    uint32_t other = UINT32_MAX;
+    for (uint32_t f = 0; f < b.mesh.faceCount() && other == UINT32_MAX; ++f)
+        if (std::isinf(field[b.mesh.faces[f][0]])) other = f;
+    REQUIRE(other != UINT32_MAX);
+    const vg_point a{0, {0.2f, 0.3f, 0.5f}}, c{other, {0.3f, 0.3f, 0.4f}};
+    CHECK(std::isinf(pointDistance(b.graph, ws, a, c)));
+    size_t index = 7;
+    float d = 0;
+    REQUIRE(vg_point_nearest(g, ws.get(), &a, &c, 1, &index, &d) == VG_OK);
+    CHECK(index == 1);
+    CHECK(std::isinf(d));
+
+    const uint32_t F = vg_face_count(g);
+    CHECK(F == b.mesh.faceCount());
+    const float nan = std::nanf("");
+    const vg_point bad[] = {{F, {1.0f / 3, 1.0f / 3, 1.0f / 3}}, {0, {nan, 0.5f, 0.5f}}, {0, {-0.1f, 0.6f, 0.5f}},
+                            {0, {0.5f, 0.5f, 0.5f}}, {0, {INFINITY, 0.0f, 0.0f}}};
+    for (const vg_point& p : bad) {
+        CHECK(vg_point_distance(g, ws.get(), &p, &a, &d) == VG_ERR_INVALID_POINT);
+        CHECK(vg_point_distance_within(g, ws.get(), &a, &p, 1.0f, &d) == VG_ERR_INVALID_POINT);
+        std::vector<float> out(b.mesh.vertexCount());
+        CHECK(vg_point_distance_field(g, ws.get(), &p, 1, out.data(), nullptr) == VG_ERR_INVALID_POINT);
+        CHECK(vg_point_nearest(g, ws.get(), &a, &p, 1, &index, &d) == VG_ERR_INVALID_POINT);
+        size_t found = 0;
+        CHECK(vg_point_k_nearest(g, ws.get(), &p, &a, 1, 1, &index, &d, &found) == VG_ERR_INVALID_POINT);
+        float xyz[3];
+        CHECK(vg_point_position(g, &p, xyz) == VG_ERR_INVALID_POINT);
+    }
+    // Within the tolerance: accepted and renormalised.
+    const vg_point slightly{0, {0.5f + 5e-5f, 0.5f, -5e-5f}};
+    CHECK(vg_point_distance(g, ws.get(), &slightly, &a, &d) == VG_OK);
+    uint32_t corners[3];
+    CHECK(vg_face_vertices(g, F, corners) == VG_ERR_INVALID_POINT);
+    REQUIRE(vg_face_vertices(g, 0, corners) == VG_OK);
+    CHECK(corners[0] == b.mesh.faces[0][0]);
+    vg_point at;
+    CHECK(vg_vertex_point(g, b.mesh.vertexCount(), &at) == VG_ERR_INVALID_VERTEX);
+    CHECK(vg_point_distance(g, ws.get(), nullptr, &a, &d) == VG_ERR_INVALID_ARGUMENT);
+}

@@ -24,6 +24,16 @@ constexpr double kWinEps = 1e-12;     // a candidate must beat a window by this 
 
 inline double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
 
+// A window in the canonical frame of its edge, seen from the twin half-edge's frame: the
+// edge reversed (x -> L - x) and the sides swapped (y -> -y).
+inline void mirrorAcrossEdge(double L, double& b0, double& b1, double& sx, double& sy) {
+    const double lo = L - b1, hi = L - b0;
+    b0 = lo;
+    b1 = hi;
+    sx = L - sx;
+    sy = -sy;
+}
+
 inline double windowDistance(double sx, double sy, double sigma, double x) {
     double dx = x - sx;
     return sigma + std::sqrt(dx * dx + sy * sy);
@@ -494,12 +504,7 @@ void ExactWorkspace::propagate(uint32_t id) {
     const double L = geo.edgeLength_[e];
     // Into the frame of h: tail(h) at the origin, the face on y > 0, the source on y < 0.
     double b0 = w.b0, b1 = w.b1, sx = w.sx, sy = w.sy;
-    if (geo.canonical_[e] != h) {
-        b0 = L - w.b1;
-        b1 = L - w.b0;
-        sx = L - w.sx;
-        sy = -w.sy;
-    }
+    if (geo.canonical_[e] != h) mirrorAcrossEdge(L, b0, b1, sx, sy);
     if (-sy <= kGrazeEps * L) return;  // rays along the edge enter neither face
     const double qx = geo.frame_[h].apexX, qy = geo.frame_[h].apexY;
     if (qy <= 0) return;  // degenerate face
@@ -562,12 +567,7 @@ double ExactWorkspace::distanceAt(const SurfacePoint& q, const std::vector<doubl
     const ExactGeodesic& geo = *geo_;
     const Mesh& m = *geo.mesh_;
     if (q.face >= m.faceCount()) throw std::invalid_argument("face " + std::to_string(q.face) + " out of range");
-    auto pointOf = [&](const SurfacePoint& sp) {
-        Vec3 p{0, 0, 0};
-        for (int k = 0; k < 3; ++k) p = p + m.positions[m.faces[sp.face][k]] * sp.bary[k];
-        return p;
-    };
-    const Vec3 x = pointOf(q);
+    const Vec3 x = positionOf(m, q);
     double best = kInfinity;
     // Through a corner (a source vertex, a pseudo-source, or any path that reaches it).
     for (int k = 0; k < 3; ++k) {
@@ -581,7 +581,7 @@ double ExactWorkspace::distanceAt(const SurfacePoint& q, const std::vector<doubl
             const int32_t t = m.twin[3 * sp.face + k];
             inFace = std::fabs(sp.bary[(k + 2) % 3]) <= 1e-12 && t >= 0 && uint32_t(Mesh::faceOf(t)) == q.face;
         }
-        if (inFace) best = std::min(best, distance(x, pointOf(sp)));
+        if (inFace) best = std::min(best, distance(x, positionOf(m, sp)));
     }
     // Windows entering the face: the straight line from the window's source when it passes
     // through the window, else through the nearer window end.
@@ -599,12 +599,7 @@ double ExactWorkspace::distanceAt(const SurfacePoint& q, const std::vector<doubl
             const Window& w = pool_[id];
             if (w.h != h) continue;
             double b0 = w.b0, b1 = w.b1, sx = w.sx, sy = w.sy;
-            if (geo.canonical_[e] != h) {
-                b0 = L - w.b1;
-                b1 = L - w.b0;
-                sx = L - w.sx;
-                sy = -w.sy;
-            }
+            if (geo.canonical_[e] != h) mirrorAcrossEdge(L, b0, b1, sx, sy);
             const double xc = qy - sy > 0 ? sx + (qx - sx) * (-sy) / (qy - sy) : qx;
             double dw;
             if (xc >= b0 && xc <= b1) {
@@ -667,8 +662,7 @@ void ExactWorkspace::run(const ExactGeodesic& geo, const ExactQuery& query,
             queue_.push({0.0, v, kVertexEvent});
             continue;
         }
-        Vec3 p{0, 0, 0};
-        for (int k = 0; k < 3; ++k) p = p + m.positions[m.faces[sp.face][k]] * sp.bary[k];
+        const Vec3 p = positionOf(m, sp);
         for (int k = 0; k < 3; ++k) relaxVertex(m.faces[sp.face][k], distance(p, m.positions[m.faces[sp.face][k]]));
         emitFromPoint(p, sp.face, 0.0);
         if (zero == 1) {  // on an edge: also the face across it

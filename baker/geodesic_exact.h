@@ -27,6 +27,12 @@ struct SurfacePoint {
     double bary[3] = {1.0, 0.0, 0.0};
 };
 
+inline Vec3 positionOf(const Mesh& mesh, const SurfacePoint& p) {
+    Vec3 x{0, 0, 0};
+    for (int k = 0; k < 3; ++k) x = x + mesh.positions[mesh.faces[p.face][k]] * p.bary[k];
+    return x;
+}
+
 // A source of the distance field: a vertex, or a point on the surface.
 struct GeodesicSource {
     bool isVertex = true;

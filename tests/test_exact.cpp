@@ -145,12 +145,6 @@ SurfacePoint randomPoint(const Mesh& m, std::mt19937_64& rng) {
     return SurfacePoint{face(rng), {a, b, 1 - a - b}};
 }
 
-Vec3 positionOf(const Mesh& m, const SurfacePoint& p) {
-    Vec3 x{0, 0, 0};
-    for (int k = 0; k < 3; ++k) x = x + m.positions[m.faces[p.face][k]] * p.bary[k];
-    return x;
-}
-
 }  // namespace
 
 TEST_CASE("distances at surface points: Euclidean on a plane, unrolled on a cylinder", "[exact]") {

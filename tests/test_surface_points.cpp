@@ -49,12 +49,6 @@ float pointDistance(const RuntimeGraph& g, const RuntimeWorkspace& ws, const vg_
     return d;
 }
 
-Vec3 positionOf(const Mesh& m, const SurfacePoint& p) {
-    Vec3 x{0, 0, 0};
-    for (int k = 0; k < 3; ++k) x = x + m.positions[m.faces[p.face][k]] * p.bary[k];
-    return x;
-}
-
 }  // namespace
 
 TEST_CASE("points: a point at a vertex answers as the vertex in every query", "[points]") {

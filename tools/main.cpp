@@ -17,6 +17,7 @@ int runBenchExact(int argc, char** argv);
 int runBake(int argc, char** argv);
 int runEval(int argc, char** argv);
 int runEvalPoints(int argc, char** argv);
+int runPath(int argc, char** argv);
 int runRender(int argc, char** argv);
 int runBench(int argc, char** argv);
 int runVoronoi(int argc, char** argv);
@@ -34,6 +35,8 @@ const Command kCommands[] = {
     {"eval", "accuracy and query time of a baked blob against exact distances", vorogeo::tools::runEval},
     {"eval-points", "accuracy and query time of surface-point queries against the exact engine",
      vorogeo::tools::runEvalPoints},
+    {"path", "geodesic path between two surface points (printed, optionally drawn over the distance field)",
+     vorogeo::tools::runPath},
     {"bench", "runtime vs exact engine vs edge Dijkstra on the same queries, with ratios", vorogeo::tools::runBench},
     {"voronoi", "geodesic Voronoi cells by growing spheres (thesis 3.8) vs one labelling query", vorogeo::tools::runVoronoi},
     {"render", "picture of a distance field (runtime, exact, error) as PNG or coloured PLY", vorogeo::tools::runRender},

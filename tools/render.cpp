@@ -16,13 +16,20 @@ struct CameraSpace {
     std::vector<Vec3> position, normal;  // per vertex
 };
 
-CameraSpace toCamera(const Mesh& mesh, const View& view) {
-    const double yaw = view.yawDegrees * M_PI / 180, pitch = view.pitchDegrees * M_PI / 180;
-    const double cy = std::cos(yaw), sy = std::sin(yaw), cp = std::cos(pitch), sp = std::sin(pitch);
-    auto rotate = [&](Vec3 p) {
+// The view's turn: yaw about y, then pitch about x.
+struct ViewRotation {
+    double cy, sy, cp, sp;
+    explicit ViewRotation(const View& view)
+        : cy(std::cos(view.yawDegrees * M_PI / 180)), sy(std::sin(view.yawDegrees * M_PI / 180)),
+          cp(std::cos(view.pitchDegrees * M_PI / 180)), sp(std::sin(view.pitchDegrees * M_PI / 180)) {}
+    Vec3 operator()(Vec3 p) const {
         const double x = cy * p.x + sy * p.z, z = -sy * p.x + cy * p.z;
         return Vec3{x, cp * p.y - sp * z, sp * p.y + cp * z};
-    };
+    }
+};
+
+CameraSpace toCamera(const Mesh& mesh, const View& view) {
+    const ViewRotation rotate(view);
     CameraSpace c;
     c.position.reserve(mesh.vertexCount());
     for (const Vec3& p : mesh.positions) c.position.push_back(rotate(p));
@@ -46,7 +53,15 @@ struct Fragment {
     float depth = -std::numeric_limits<float>::infinity();
 };
 
-std::vector<Fragment> rasterise(const Mesh& mesh, const CameraSpace& cam, int width, int height, double& depthScale) {
+// Camera space to pixels: x' = offX + (x - minX) scale, y' = offY + (maxY - y) scale.
+struct Projection {
+    double scale = 1, offX = 0, offY = 0, minX = 0, maxY = 0;
+    double x(const Vec3& p) const { return offX + (p.x - minX) * scale; }
+    double y(const Vec3& p) const { return offY + (maxY - p.y) * scale; }
+};
+
+std::vector<Fragment> rasterise(const Mesh& mesh, const CameraSpace& cam, int width, int height, double& depthScale,
+                                Projection& proj) {
     double minX = INFINITY, maxX = -INFINITY, minY = INFINITY, maxY = -INFINITY, minZ = INFINITY, maxZ = -INFINITY;
     for (const Vec3& p : cam.position) {
         minX = std::min(minX, p.x), maxX = std::max(maxX, p.x);
@@ -58,10 +73,11 @@ std::vector<Fragment> rasterise(const Mesh& mesh, const CameraSpace& cam, int wi
     const double scale = (1 - 2 * margin) * std::min(width / spanX, height / spanY);
     const double offX = 0.5 * (width - scale * spanX), offY = 0.5 * (height - scale * spanY);
     depthScale = std::max(maxZ - minZ, 1e-12);
+    proj = Projection{scale, offX, offY, minX, maxY};
     std::vector<double> sx(cam.position.size()), sy(cam.position.size());
     for (size_t v = 0; v < cam.position.size(); ++v) {
-        sx[v] = offX + (cam.position[v].x - minX) * scale;
-        sy[v] = offY + (maxY - cam.position[v].y) * scale;
+        sx[v] = proj.x(cam.position[v]);
+        sy[v] = proj.y(cam.position[v]);
     }
     std::vector<Fragment> frags(size_t(width) * size_t(height));
     for (uint32_t f = 0; f < mesh.faceCount(); ++f) {
@@ -100,6 +116,32 @@ Rgb ramp(const Rgb* stops, int count, double t) {
     t = std::clamp(std::isnan(t) ? 0.0 : t, 0.0, 1.0) * (count - 1);
     const int i = std::min(int(t), count - 2);
     return lerp(stops[i], stops[i + 1], t - i);
+}
+
+// Draws the panel's polyline, 3 pixels wide, where it is not hidden behind the surface
+// (it lies on it, so it is compared with the front-most depth with some slack).
+void drawPolyline(Image& img, const std::vector<Fragment>& frags, const Panel& panel, const View& view,
+                  const Projection& proj, int width, int height, double depthScale) {
+    const ViewRotation rotate(view);
+    auto plot = [&](double px, double py, double depth) {
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                const int x = int(std::floor(px)) + dx, y = int(std::floor(py)) + dy;
+                if (x < 0 || y < 0 || x >= width || y >= height) continue;
+                const Fragment& fr = frags[size_t(y) * size_t(width) + size_t(x)];
+                if (fr.face >= 0 && depth < fr.depth - 0.02 * depthScale) continue;
+                img.at(x, y + kCaptionHeight) = panel.polylineColour;
+            }
+    };
+    for (size_t i = 0; i + 1 < panel.polyline.size(); ++i) {
+        const Vec3 a = rotate(panel.polyline[i]), b = rotate(panel.polyline[i + 1]);
+        const double ax = proj.x(a), ay = proj.y(a), bx = proj.x(b), by = proj.y(b);
+        const int steps = std::max(1, int(std::ceil(std::max(std::fabs(bx - ax), std::fabs(by - ay)) * 2)));
+        for (int k = 0; k <= steps; ++k) {
+            const double t = double(k) / steps;
+            plot(ax + t * (bx - ax), ay + t * (by - ay), a.z + t * (b.z - a.z));
+        }
+    }
 }
 
 Image shadePanel(const Mesh& mesh, const CameraSpace& cam, const std::vector<Fragment>& frags, const Panel& panel,
@@ -156,10 +198,14 @@ Image shadePanel(const Mesh& mesh, const CameraSpace& cam, const std::vector<Fra
 Image renderPanels(const Mesh& mesh, const std::vector<Panel>& panels, int width, int height, const View& view) {
     const CameraSpace cam = toCamera(mesh, view);
     double depthScale = 1;
-    const std::vector<Fragment> frags = rasterise(mesh, cam, width, height, depthScale);
+    Projection proj;
+    const std::vector<Fragment> frags = rasterise(mesh, cam, width, height, depthScale, proj);
     Image out(width * int(panels.size()), height + kCaptionHeight, kBackground);
-    for (size_t k = 0; k < panels.size(); ++k)
-        out.paste(shadePanel(mesh, cam, frags, panels[k], width, height, depthScale), int(k) * width, 0);
+    for (size_t k = 0; k < panels.size(); ++k) {
+        Image img = shadePanel(mesh, cam, frags, panels[k], width, height, depthScale);
+        if (!panels[k].polyline.empty()) drawPolyline(img, frags, panels[k], view, proj, width, height, depthScale);
+        out.paste(img, int(k) * width, 0);
+    }
     return out;
 }
 

@@ -23,6 +23,8 @@ struct Panel {
     std::vector<double> isoValue;  // empty: no isolines; +inf values draw none
     double isoSpacing = 0;
     std::string caption;
+    std::vector<Vec3> polyline;  // drawn over the surface where it is visible (e.g. a geodesic path)
+    Rgb polylineColour{255, 255, 255};
 };
 
 // Renders the panels side by side, each width x height pixels plus a caption strip.

@@ -72,8 +72,10 @@ typedef enum vg_status {
     VG_ERR_IO = 13,                 /* vg_open_file could not open, read or map the file */
     VG_ERR_OUT_OF_MEMORY = 14,      /* the allocator callback returned NULL */
     VG_ERR_NO_SLICED_QUERY = 15,    /* vg_distance_field_step without a live sliced query */
-    VG_ERR_INVALID_POINT = 16       /* face out of range, or barycentric weights NaN, negative
+    VG_ERR_INVALID_POINT = 16,      /* face out of range, or barycentric weights NaN, negative
                                        or not summing to 1 (beyond VG_BARY_TOLERANCE) */
+    VG_ERR_PATH_FAILED = 17         /* vg_path could not trace a path on the surface (a defect:
+                                       never seen in the tests; please report the blob and points) */
 } vg_status;
 
 /* Human-readable, static, never NULL. Unknown codes give "unknown status". */
@@ -230,6 +232,32 @@ VG_API vg_status vg_point_nearest(const vg_graph* graph, vg_workspace* workspace
 VG_API vg_status vg_point_k_nearest(const vg_graph* graph, vg_workspace* workspace, const vg_point* source,
                                     const vg_point* targets, size_t target_count, size_t k,
                                     size_t* out_indices, float* out_distances, size_t* out_found);
+
+/* ------------------------------------------------------------------ geodesic paths */
+
+/* One vertex of a path polyline: where it lies (a point inside a face, on an edge: the
+ * weight of the opposite corner is 0, or at a vertex: weight 1 on it) and its position. */
+typedef struct vg_path_point {
+    vg_point point;
+    float position[3];
+} vg_path_point;
+
+/* The path on the surface whose length vg_point_distance returns (*out_distance is that
+ * same number): a polyline from source to target that runs across faces and along edges,
+ * consecutive points always on one common face, its length within 0.1% of the distance
+ * for typical pairs (BENCHMARKS.md has the measured spread). It follows the search's
+ * route through patch borders and traces each patch by descending the stored distances
+ * face by face.
+ *
+ * Size query first: with out_points NULL and capacity 0 the call returns VG_OK and sets
+ * *out_count to the number of points needed. With a buffer of `capacity` points it writes
+ * *out_count points, or returns VG_ERR_BUFFER_TOO_SMALL with *out_count = the number
+ * needed (buffer contents then unspecified). The count depends only on graph and points,
+ * never on the capacity. A source equal to the target gives one point; points in different
+ * components give *out_count = 0 and +infinity. Uses the workspace like any query. */
+VG_API vg_status vg_path(const vg_graph* graph, vg_workspace* workspace, const vg_point* source,
+                         const vg_point* target, vg_path_point* out_points, size_t capacity, size_t* out_count,
+                         float* out_distance);
 
 #ifdef __cplusplus
 }

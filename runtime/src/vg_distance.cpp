@@ -12,6 +12,7 @@
 // Quantisation can make a stored length a hair shorter than a bound; a node
 // whose label drops after it was settled is simply queued again.
 #include "vg_fan.h"
+#include "vg_point_to_point.h"
 #include "vg_query.h"
 #include "vg_lower_bound.h"
 #include "vg_search.h"
@@ -32,13 +33,26 @@ bool endpointLess(const Endpoint& a, const Endpoint& b) {
 
 bool sameEndpoint(const Endpoint& a, const Endpoint& b) { return !endpointLess(a, b) && !endpointLess(b, a); }
 
-float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float maxDistance) {
+}  // namespace
+
+namespace vg {
+
+float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float maxDistance, Meeting* how) {
     const float inf = __builtin_inff();
-    if (sameEndpoint(s, t)) return 0.0f;
-    if (endpointLess(t, s)) {
+    Meeting scratch;
+    Meeting& m = how ? *how : scratch;
+    m.kind = Meeting::kUnreached;
+    m.swapped = endpointLess(t, s);
+    if (m.swapped) {
         const Endpoint x = s;
         s = t;
         t = x;
+    }
+    m.s = s;
+    m.t = t;
+    if (sameEndpoint(s, t)) {
+        m.kind = Meeting::kSame;
+        return 0.0f;
     }
     if ((s.isVertex() && g.vertexPatch[s.vertex] == kNone) || (t.isVertex() && g.vertexPatch[t.vertex] == kNone))
         return inf;
@@ -47,16 +61,29 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, 
     const uint32_t gen = beginQuery(ws);
     float best = inf;
     // Two points of one face: the straight segment.
-    if (!s.isVertex() && !t.isVertex() && s.face == t.face) best = distance3(s.position, t.position);
+    if (!s.isVertex() && !t.isVertex() && s.face == t.face) {
+        best = distance3(s.position, t.position);
+        m.kind = Meeting::kSegment;
+    }
     // Two points around one vertex: the exact local paths (vg_fan.h).
-    const float local = localPath(g, s, t);
-    if (local < best) best = local;
+    uint32_t fanVertex = kNone, fanWay = 0;
+    const float local = localPath(g, s, t, &fanVertex, &fanWay);
+    if (local < best) {
+        best = local;
+        m.kind = Meeting::kFan;
+        m.vertex = fanVertex;
+        m.way = fanWay;
+    }
     // Two endpoints of one second-layer patch: the stored (or interpolated) entry is a path already.
     forEachEndpointPatch(g, s, [&](uint32_t ps, uint32_t, auto&& fromS) {
         forEachEndpointPatch(g, t, [&](uint32_t pt, uint32_t slotT, auto&&) {
             if (ps != pt) return;
             const float d = toEndpointInPatch(t, slotT, fromS);
-            if (d < best) best = d;
+            if (d < best) {
+                best = d;
+                m.kind = Meeting::kPatch;
+                m.patch = ps;
+            }
         });
     });
 
@@ -95,12 +122,21 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, 
     auto meet = [&](uint32_t v) {
         if (!F.labelled(v) || !B.labelled(v)) return;
         const float fv = F.label[v].dist, bv = B.label[v].dist;
-        if (fv + bv < best) best = fv + bv;
+        if (fv + bv < best) {
+            best = fv + bv;
+            m.kind = Meeting::kNode;
+            m.node = v;
+        }
         for (uint32_t e = g.nodeEdgeBegin[v]; e < g.nodeEdgeBegin[v + 1]; ++e) {
             const uint32_t w = g.nodeEdge[e];
             if (!F.labelled(w) || !B.labelled(w)) continue;
             const float d = crossing(fv, F.label[w].dist, bv, B.label[w].dist, euclidean(g, g.nodeVertex[v], g.nodeVertex[w]));
-            if (d < best) best = d;
+            if (d < best) {
+                best = d;
+                m.kind = Meeting::kCrossing;
+                m.node = v;
+                m.other = w;
+            }
         }
     };
     auto onLabel = [&](uint32_t v, float) { meet(v); };
@@ -119,10 +155,14 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, 
             relaxNode(g, u, B.label[u].dist, scope, B, backwardKey, onLabel);
         }
     }
-    return best <= maxDistance ? best : inf;
+    if (!(best <= maxDistance)) {
+        m.kind = Meeting::kUnreached;
+        return inf;
+    }
+    return best;
 }
 
-}  // namespace
+}  // namespace vg
 
 extern "C" vg_status vg_distance(const vg_graph* graph, vg_workspace* workspace, uint32_t source,
                                  uint32_t target, float* out_distance) {

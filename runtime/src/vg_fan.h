@@ -26,16 +26,26 @@ inline float angleAt(const float* at, const float* a, const float* b) {
     return __builtin_atan2f(__builtin_sqrtf(cx * cx + cy * cy + cz * cz), ux * vx + uy * vy + uz * vz);
 }
 
+// Where a fan segment crosses one edge (v, far) of the fan: `face` is the face it leaves,
+// `along` the distance from v.
+struct FanCrossing {
+    uint32_t face, far;
+    float along;
+};
+constexpr uint32_t kMaxFan = 64;
+
 // Walks the fan around v from face fs to face ft, one way round (forward: across the edge
 // entering v in each face; else across the edge leaving v), and returns the straight
 // segment from s to t in the unfolded fan, or +inf when the walk hits a boundary, the
-// opening angle reaches pi or the segment leaves the fan.
-inline float fanSegment(const vg_graph& g, uint32_t v, const Endpoint& s, const Endpoint& t, bool forward) {
+// opening angle reaches pi or the segment leaves the fan. With `crossings` (kMaxFan
+// entries) it also says where the segment crosses each edge, in order.
+inline float fanSegment(const vg_graph& g, uint32_t v, const Endpoint& s, const Endpoint& t, bool forward,
+                        FanCrossing* crossings = nullptr, uint32_t* crossingCount = nullptr) {
     const float inf = __builtin_inff();
     const float* pv = g.positions + 3 * uint64_t(v);
     // Edge rays crossed on the way, as (angle from s, length); a fan has few faces.
-    constexpr uint32_t kMaxFan = 64;
     float rayAngle[kMaxFan], rayLength[kMaxFan];
+    uint32_t rayFace[kMaxFan], rayFar[kMaxFan];
     uint32_t rays = 0;
     uint32_t f = s.face;
     // In face f, `out` is the corner after v and `in` the corner before it; walking forward
@@ -53,6 +63,8 @@ inline float fanSegment(const vg_graph& g, uint32_t v, const Endpoint& s, const 
     for (uint32_t step = 0; f != t.face; ++step) {
         if (step >= kMaxFan || !(angle < 3.14159265f)) return inf;
         rayAngle[rays] = angle;
+        rayFace[rays] = f;
+        rayFar[rays] = forward ? in : out;
         rayLength[rays++] = distance3(pv, far);
         const uint32_t across = forward ? g.faceTwin[prevHalfedge(h)] : g.faceTwin[h];
         if (across == kNone) return inf;
@@ -78,16 +90,21 @@ inline float fanSegment(const vg_graph& g, uint32_t v, const Endpoint& s, const 
         if (!(cs - ct != 0.0f)) return inf;
         const float l = cs / (cs - ct);
         const float px = sx + l * (tx - sx), py = sy + l * (ty - sy);
-        if (px * ux + py * uy > rayLength[r]) return inf;
+        const float along = px * ux + py * uy;
+        if (along > rayLength[r]) return inf;
+        if (crossings) crossings[r] = FanCrossing{rayFace[r], rayFar[r], along};
     }
+    if (crossingCount) *crossingCount = rays;
     const float dx = tx - sx, dy = ty - sy;
     return __builtin_sqrtf(dx * dx + dy * dy);
 }
 
 // The shortest local path between two surface points (not vertices) whose faces share a
 // vertex: through the shared vertex, or straight across its fan either way; +inf when the
-// faces share none.
-inline float localPath(const vg_graph& g, const Endpoint& s, const Endpoint& t) {
+// faces share none. With the out parameters it says which: the vertex, and way 0 / 1 for
+// the fan forward / backward, 2 through the vertex.
+inline float localPath(const vg_graph& g, const Endpoint& s, const Endpoint& t, uint32_t* outVertex = nullptr,
+                       uint32_t* outWay = nullptr) {
     float best = __builtin_inff();
     if (s.isVertex() || t.isVertex()) return best;
     for (int i = 0; i < 3; ++i) {
@@ -95,11 +112,14 @@ inline float localPath(const vg_graph& g, const Endpoint& s, const Endpoint& t) 
         const uint32_t j = cornerOf(g, t.face, v);
         if (j == 3) continue;
         const float through = s.reach[i] + t.reach[j];
-        if (through < best) best = through;
-        for (int way = 0; way < 2; ++way) {
-            const float d = fanSegment(g, v, s, t, way == 0);
-            if (d < best) best = d;
-        }
+        auto offer = [&](float d, uint32_t way) {
+            if (!(d < best)) return;
+            best = d;
+            if (outVertex) *outVertex = v;
+            if (outWay) *outWay = way;
+        };
+        offer(through, 2);
+        for (uint32_t way = 0; way < 2; ++way) offer(fanSegment(g, v, s, t, way == 0), way);
     }
     return best;
 }

@@ -22,11 +22,11 @@ struct Scope {
 };
 
 // Relaxes row `i` of second-layer patch `patch` (its active node columns) from distance
-// du. keyOf(v, dv) gives v's queue key, +inf to leave v alone (it cannot improve the
+// du of node `parent` (kNone for an endpoint). keyOf(v, dv) gives v's queue key, +inf to leave v alone (it cannot improve the
 // answer); onImprove(v, dv) runs after v's label dropped to dv.
 template <class KeyOf, class OnImprove>
-inline void relaxSecondRow(const vg_graph& g, uint32_t patch, uint32_t i, float du, uint32_t origin, Frontier& f,
-                           KeyOf&& keyOf, OnImprove&& onImprove) {
+inline void relaxSecondRow(const vg_graph& g, uint32_t patch, uint32_t i, float du, uint32_t origin, uint32_t parent,
+                           Frontier& f, KeyOf&& keyOf, OnImprove&& onImprove) {
     const Patch& p = g.second[patch];
     const uint32_t* slots = g.slots + p.slotBegin;
     const uint8_t* packed = g.secondDistances;
@@ -39,7 +39,7 @@ inline void relaxSecondRow(const vg_graph& g, uint32_t patch, uint32_t i, float 
         if (!f.better(v, dv)) return;
         const float key = keyOf(v, dv);
         if (key == __builtin_inff()) return;
-        f.improve(v, dv, key, patch, origin);
+        f.improve(v, dv, key, patch, origin, parent);
         onImprove(v, dv);
     };
     const uint32_t before = i < p.nodeCount ? i : p.nodeCount;  // an endpoint's slot may follow the nodes
@@ -50,8 +50,8 @@ inline void relaxSecondRow(const vg_graph& g, uint32_t patch, uint32_t i, float 
 
 // Relaxes row `i` of first-layer patch `patch` (stored whole, so the row is contiguous).
 template <class KeyOf, class OnImprove>
-inline void relaxFirstRow(const vg_graph& g, uint32_t patch, uint32_t i, float du, uint32_t origin, Frontier& f,
-                          KeyOf&& keyOf, OnImprove&& onImprove) {
+inline void relaxFirstRow(const vg_graph& g, uint32_t patch, uint32_t i, float du, uint32_t origin, uint32_t parent,
+                          Frontier& f, KeyOf&& keyOf, OnImprove&& onImprove) {
     const Patch& p = g.first[patch];
     const uint32_t* slots = g.slots + p.slotBegin;
     const uint64_t row = p.matrixBegin + uint64_t(i) * p.slotCount;
@@ -63,7 +63,7 @@ inline void relaxFirstRow(const vg_graph& g, uint32_t patch, uint32_t i, float d
         if (!f.better(v, dv)) continue;
         const float key = keyOf(v, dv);
         if (key == __builtin_inff()) continue;
-        f.improve(v, dv, key, patch | kFirstLayerBit, origin);
+        f.improve(v, dv, key, patch | kFirstLayerBit, origin, parent);
         onImprove(v, dv);
     }
 }
@@ -78,13 +78,13 @@ inline void relaxNode(const vg_graph& g, uint32_t u, float du, const Scope& scop
     for (uint32_t m = g.nodeSecondBegin[u]; m < g.nodeSecondBegin[u + 1]; ++m) {
         const uint32_t patch = g.nodeSecond[m].patch;
         if (patch != from && scope.detailed(g.second[patch].parent))
-            relaxSecondRow(g, patch, g.nodeSecond[m].slot, du, origin, f, keyOf, onImprove);
+            relaxSecondRow(g, patch, g.nodeSecond[m].slot, du, origin, u, f, keyOf, onImprove);
     }
     if (scope.everywhere) return;
     for (uint32_t m = g.nodeFirstBegin[u]; m < g.nodeFirstBegin[u + 1]; ++m) {
         const uint32_t patch = g.nodeFirst[m].patch;
         if ((patch | kFirstLayerBit) != from && !scope.detailed(patch))
-            relaxFirstRow(g, patch, g.nodeFirst[m].slot, du, origin, f, keyOf, onImprove);
+            relaxFirstRow(g, patch, g.nodeFirst[m].slot, du, origin, u, f, keyOf, onImprove);
     }
 }
 
@@ -104,12 +104,12 @@ inline void seedEndpoint(const vg_graph& g, uint32_t x, uint32_t origin, Frontie
         if (!f.better(node, offset)) return;
         const float key = keyOf(node, offset);
         if (key == __builtin_inff()) return;
-        f.improve(node, offset, key, kNone, origin);
+        f.improve(node, offset, key, kNone, origin, kNone);
         onImprove(node, offset);
         return;
     }
     forEachPatchOf(g, x, [&](uint32_t patch, uint32_t slot) {
-        relaxSecondRow(g, patch, slot, offset, origin, f, keyOf, onImprove);
+        relaxSecondRow(g, patch, slot, offset, origin, kNone, f, keyOf, onImprove);
     });
 }
 
@@ -140,7 +140,7 @@ inline void seedEndpoint(const vg_graph& g, const Endpoint& e, uint32_t origin, 
         if (d == __builtin_inff() || !f.better(n, d)) continue;
         const float key = keyOf(n, d);
         if (key == __builtin_inff()) continue;
-        f.improve(n, d, key, e.patch, origin);
+        f.improve(n, d, key, e.patch, origin, kNone);
         onImprove(n, d);
     }
 }

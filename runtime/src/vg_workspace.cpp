@@ -51,6 +51,9 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.patchEdgeBegin = L.take<uint32_t>(kMaxPatchSlots + 1);
     o.patchEdges = L.take<vg::CrossingEdge>(vg::kMaxPatchEdges);
     o.targetEndpoints = L.take<vg::Endpoint>(vg::kTargetChunk);
+    o.pathNodes = L.take<uint32_t>(N + 1);
+    o.pathLegs = L.take<vg::PathLeg>(vg::maxPathLegs(N));
+    o.pathSteps = L.take<vg::PathLeg>(vg::maxPathLegs(N));
     o.graph = &g;
     o.generation = 0;
     o.slice = vg::FieldSlice{0, 0, 0, nullptr, nullptr, 0, nullptr, nullptr};

@@ -43,6 +43,13 @@ struct Route {
     uint32_t via;      // patch whose row gave the label (first layer: | kFirstLayerBit)
     uint32_t heapPos;  // kNone when not in the heap
     uint32_t origin;   // which source the label comes from (multi-source fields)
+    uint32_t parent;   // node whose row gave the label, kNone when seeded from an endpoint
+};
+
+// One leg of a path: from node to node (or an endpoint marker, vg_path.cpp) inside
+// second-layer patch `via`, or across first-layer patch `via | kFirstLayerBit`.
+struct PathLeg {
+    uint32_t from, to, via;
 };
 
 // One search direction: tentative distances and the queue of open nodes.
@@ -59,9 +66,9 @@ struct Frontier {
     bool empty() const { return size == 0; }
     float topKey() const { return size ? heap[0].key : __builtin_inff(); }
 
-    // Sets u's label to d (queue key `key`), reached through the row of patch `from`
-    // from source `origin`; the caller checked better(u, d).
-    void improve(uint32_t u, float d, float key, uint32_t from, uint32_t origin) {
+    // Sets u's label to d (queue key `key`), reached through the row of patch `from` of
+    // node `parent` from source `origin`; the caller checked better(u, d).
+    void improve(uint32_t u, float d, float key, uint32_t from, uint32_t origin, uint32_t parent) {
         Label& l = label[u];
         Route& r = route[u];
         const bool queued = l.stamp == generation && r.heapPos != kNone;
@@ -69,6 +76,7 @@ struct Frontier {
         l.dist = d;
         r.via = from;
         r.origin = origin;
+        r.parent = parent;
         siftUp(queued ? r.heapPos : size++, HeapEntry{key, u});  // decrease, or (re)open
     }
 
@@ -149,10 +157,17 @@ struct vg_workspace {
     uint32_t* patchEdgeBegin;      // per reached node of one patch: first of its crossing edges
     vg::CrossingEdge* patchEdges;
     vg::Endpoint* targetEndpoints; // kTargetChunk resolved targets (vg_point_k_nearest)
+    uint32_t* pathNodes;           // N + 1: a node chain being read off (vg_path)
+    vg::PathLeg* pathLegs;         // kMaxPathLegs(N): the route's legs, then ...
+    vg::PathLeg* pathSteps;        // ... with first-layer legs expanded into second-layer ones
     vg::FieldSlice slice;          // the time-sliced one-to-all query, if one was started
 };
 
 namespace vg {
+
+// Legs a path may have (its node chain plus the endpoints and a crossing, twice over for
+// first-layer legs expanded into the second layer).
+inline uint64_t maxPathLegs(uint64_t nodeCount) { return 2 * nodeCount + 8; }
 
 // Starts a query: a fresh generation for every stamp array.
 uint32_t beginQuery(vg_workspace& ws);

@@ -1,0 +1,32 @@
+// The point-to-point search (vg_distance.cpp), shared with the path query, which needs to
+// know how the best distance was found to rebuild it as a polyline.
+// Internal to the runtime.
+#pragma once
+
+#include "vg_workspace.h"
+
+namespace vg {
+
+// How pointToPoint's answer was reached. The search labels stay in the workspace's two
+// frontiers (forward from s, backward from t) until the next query.
+struct Meeting {
+    enum Kind : uint32_t {
+        kUnreached,  // +inf (or beyond the bound)
+        kSame,       // s and t are one point
+        kSegment,    // one face: the straight segment
+        kFan,        // faces around `vertex`: way 0 / 1 across its fan, 2 through it
+        kPatch,      // one second-layer `patch` holds both
+        kNode,       // the searches met at `node`
+        kCrossing,   // they met across the mesh edge (node, other)
+    };
+    uint32_t kind;
+    bool swapped;  // s and t are the caller's target and source (one order for both directions)
+    Endpoint s, t;
+    uint32_t patch, node, other, vertex, way;
+};
+
+// Distance from s to t (+inf beyond maxDistance); with `how`, also how it was found.
+float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float maxDistance,
+                   Meeting* how = nullptr);
+
+}  // namespace vg

@@ -340,7 +340,7 @@ TEST_CASE("runtime: arguments are checked and named by status codes", "[runtime]
     vg_workspace* w = nullptr;
     CHECK(vg_workspace_init(graph, small.data(), small.size(), &w) == VG_ERR_BUFFER_TOO_SMALL);
     CHECK(w == nullptr);
-    for (int s = 0; s <= 16; ++s) CHECK(std::string(vg_status_string(vg_status(s))) != "unknown status");
+    for (int s = 0; s <= 17; ++s) CHECK(std::string(vg_status_string(vg_status(s))) != "unknown status");
     CHECK(std::string(vg_status_string(vg_status(99))) == "unknown status");
 }
 

@@ -11,6 +11,7 @@
 
 #include "bake.h"
 #include "generators.h"
+#include "path_check.h"
 #include "runtime_graph.h"
 #include "runtime_stats.h"
 #include "surface_points.h"
@@ -243,4 +244,146 @@ TEST_CASE("points: other components are at +infinity; bad points get VG_ERR_INVA
     vg_point at;
     CHECK(vg_vertex_point(g, b.mesh.vertexCount(), &at) == VG_ERR_INVALID_VERTEX);
     CHECK(vg_point_distance(g, ws.get(), nullptr, &a, &d) == VG_ERR_INVALID_ARGUMENT);
+}
+
+namespace {
+
+// vg_path into a vector (size query, then the call); the distance it returns.
+float pathBetween(const RuntimeGraph& g, const RuntimeWorkspace& ws, const vg_point& a, const vg_point& b,
+                  std::vector<vg_path_point>& out) {
+    size_t count = 0;
+    float d = -1;
+    REQUIRE(vg_path(g.graph(), ws.get(), &a, &b, nullptr, 0, &count, &d) == VG_OK);
+    out.assign(count, vg_path_point{});
+    size_t written = 0;
+    float again = -1;
+    REQUIRE(vg_path(g.graph(), ws.get(), &a, &b, out.data(), out.size(), &written, &again) == VG_OK);
+    REQUIRE(written == count);
+    REQUIRE(again == d);
+    return d;
+}
+
+// Relative differences of path length and distance over random point pairs, with every
+// path checked to lie on the surface and to join its two points.
+std::vector<double> pathLengthDifferences(const Baked& b, size_t pairs, uint64_t seed) {
+    RuntimeWorkspace ws(b.graph);
+    const tools::PathChecker checker(b.mesh);
+    const std::vector<SurfacePoint> pts = tools::randomSurfacePoints(b.mesh, 2 * pairs, seed);
+    std::vector<double> diffs;
+    std::vector<vg_path_point> path;
+    for (size_t i = 0; i < pairs; ++i) {
+        const vg_point s = tools::toRuntimePoint(pts[2 * i]), t = tools::toRuntimePoint(pts[2 * i + 1]);
+        const float d = pathBetween(b.graph, ws, s, t, path);
+        CHECK(d == pointDistance(b.graph, ws, s, t));
+        const tools::PathCheck c = checker.check(path);
+        INFO("pair " << i << ": " << c.problem);
+        CHECK(c.ok);
+        REQUIRE(path.size() >= 2);
+        float ps[3], pt[3];
+        REQUIRE(vg_point_position(b.graph.graph(), &s, ps) == VG_OK);
+        REQUIRE(vg_point_position(b.graph.graph(), &t, pt) == VG_OK);
+        for (int k = 0; k < 3; ++k) {
+            CHECK(path.front().position[k] == Approx(ps[k]).margin(1e-6));
+            CHECK(path.back().position[k] == Approx(pt[k]).margin(1e-6));
+        }
+        diffs.push_back(std::fabs(c.length - d) / d);
+    }
+    std::sort(diffs.begin(), diffs.end());
+    return diffs;
+}
+
+}  // namespace
+
+TEST_CASE("paths: on the surface, joining the points, as long as the distance", "[points][paths]") {
+    // These meshes are coarse (1,800 and 1,600 vertices, a few dozen per patch), where the
+    // per-face field model is rougher than on real meshes (igea: mean 0.02%, BENCHMARKS.md).
+    for (const char* name : {"bumpy", "plane"}) {
+        const std::vector<double> diffs = pathLengthDifferences(baked(name), 300, 41);
+        const double median = diffs[diffs.size() / 2], p90 = diffs[diffs.size() * 9 / 10];
+        INFO(name << ": length vs distance median " << median << ", p90 " << p90 << ", max " << diffs.back());
+        CHECK(median < 2e-3);
+        CHECK(p90 < 1e-2);
+        CHECK(diffs.back() < 0.1);
+    }
+}
+
+TEST_CASE("paths: on a plane, the straight segment", "[points][paths]") {
+    const Baked& b = baked("plane");
+    RuntimeWorkspace ws(b.graph);
+    const std::vector<SurfacePoint> pts = tools::randomSurfacePoints(b.mesh, 200, 43);
+    std::vector<vg_path_point> path;
+    double worst = 0;
+    for (size_t i = 0; i + 1 < pts.size(); i += 2) {
+        pathBetween(b.graph, ws, tools::toRuntimePoint(pts[i]), tools::toRuntimePoint(pts[i + 1]), path);
+        const double straight = distance(positionOf(b.mesh, pts[i]), positionOf(b.mesh, pts[i + 1]));
+        worst = std::max(worst, (tools::polylineLength(path) - straight) / straight);
+    }
+    // The path bends only where the distance does (a border node next to a third patch).
+    INFO("worst excess over the straight segment " << worst);
+    CHECK(worst < 0.04);
+}
+
+TEST_CASE("paths: the reverse path is the same polyline backwards", "[points][paths]") {
+    const Baked& b = baked("bumpy");
+    RuntimeWorkspace ws(b.graph);
+    const std::vector<SurfacePoint> pts = tools::randomSurfacePoints(b.mesh, 40, 47);
+    std::vector<vg_path_point> forward, backward;
+    for (size_t i = 0; i + 1 < pts.size(); i += 2) {
+        const vg_point s = tools::toRuntimePoint(pts[i]), t = tools::toRuntimePoint(pts[i + 1]);
+        CHECK(pathBetween(b.graph, ws, s, t, forward) == pathBetween(b.graph, ws, t, s, backward));
+        REQUIRE(forward.size() == backward.size());
+        for (size_t k = 0; k < forward.size(); ++k)
+            for (int c = 0; c < 3; ++c) CHECK(forward[k].position[c] == backward[forward.size() - 1 - k].position[c]);
+    }
+}
+
+TEST_CASE("paths: size query, small buffers, one point, other components, bad input", "[points][paths]") {
+    const Baked& b = baked("bumpy");
+    RuntimeWorkspace ws(b.graph);
+    const vg_graph* g = b.graph.graph();
+    const std::vector<SurfacePoint> pts = tools::randomSurfacePoints(b.mesh, 2, 53);
+    const vg_point s = tools::toRuntimePoint(pts[0]), t = tools::toRuntimePoint(pts[1]);
+    std::vector<vg_path_point> full;
+    const float d = pathBetween(b.graph, ws, s, t, full);
+    REQUIRE(full.size() > 2);
+    // Too small: the needed count, whatever the capacity.
+    std::vector<vg_path_point> small(full.size() - 1);
+    size_t count = 0;
+    float got = 0;
+    CHECK(vg_path(g, ws.get(), &s, &t, small.data(), small.size(), &count, &got) == VG_ERR_BUFFER_TOO_SMALL);
+    CHECK(count == full.size());
+    CHECK(got == d);
+    std::vector<vg_path_point> roomy(full.size() + 10);
+    CHECK(vg_path(g, ws.get(), &s, &t, roomy.data(), roomy.size(), &count, &got) == VG_OK);
+    CHECK(count == full.size());
+    for (size_t k = 0; k < full.size(); ++k) CHECK(roomy[k].position[0] == full[k].position[0]);
+    // The same point: one point, distance 0.
+    CHECK(vg_path(g, ws.get(), &s, &s, roomy.data(), roomy.size(), &count, &got) == VG_OK);
+    CHECK(count == 1);
+    CHECK(got == 0.0f);
+    // Bad input.
+    vg_point bad = s;
+    bad.face = vg_face_count(g);
+    CHECK(vg_path(g, ws.get(), &bad, &t, roomy.data(), roomy.size(), &count, &got) == VG_ERR_INVALID_POINT);
+    bad = s;
+    bad.bary[0] = NAN;
+    CHECK(vg_path(g, ws.get(), &s, &bad, roomy.data(), roomy.size(), &count, &got) == VG_ERR_INVALID_POINT);
+    CHECK(vg_path(g, ws.get(), &s, &t, nullptr, 5, &count, &got) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(vg_path(g, ws.get(), &s, &t, roomy.data(), roomy.size(), nullptr, &got) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(vg_path(g, ws.get(), &s, &t, roomy.data(), roomy.size(), &count, nullptr) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(vg_path(g, ws.get(), nullptr, &t, roomy.data(), roomy.size(), &count, &got) == VG_ERR_INVALID_ARGUMENT);
+    // Other components: no path.
+    const Baked& two = baked("two");
+    RuntimeWorkspace ws2(two.graph);
+    uint32_t fa[3], fb[3];
+    const uint32_t F = vg_face_count(two.graph.graph());
+    REQUIRE(vg_face_vertices(two.graph.graph(), 0, fa) == VG_OK);
+    REQUIRE(vg_face_vertices(two.graph.graph(), F - 1, fb) == VG_OK);
+    const vg_point p0{0, {0.3f, 0.3f, 0.4f}}, p1{F - 1, {0.3f, 0.3f, 0.4f}};
+    float pd = 0;
+    REQUIRE(vg_point_distance(two.graph.graph(), ws2.get(), &p0, &p1, &pd) == VG_OK);
+    REQUIRE(pd == INFINITY);  // the first and last faces lie on different components
+    CHECK(vg_path(two.graph.graph(), ws2.get(), &p0, &p1, roomy.data(), roomy.size(), &count, &got) == VG_OK);
+    CHECK(count == 0);
+    CHECK(got == INFINITY);
 }

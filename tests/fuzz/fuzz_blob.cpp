@@ -6,6 +6,7 @@
 //      so that mutations reach the verifier and the meaning checks instead of the checksum;
 //   2: the same, zstd-compressed.
 // Nothing may crash, read out of bounds or trip UBSan; every status must be a known one.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -21,7 +22,7 @@ namespace {
 constexpr size_t kMaxOpenMemory = size_t(64) << 20;  // the harness's budget, not a runtime limit
 
 void check(vg_status st) {
-    if (st < VG_OK || st > VG_ERR_INVALID_POINT) std::abort();
+    if (st < VG_OK || st > VG_ERR_PATH_FAILED) std::abort();
 }
 
 // Reads little pieces of the input to steer the queries; zeros once it runs out.
@@ -108,6 +109,16 @@ void queryEverything(const vg_graph* g, const uint8_t* data, size_t size) {
             if (std::isnan(pointField[i]) || pointField[i] < 0) std::abort();
     float xyz[3];
     check(vg_point_position(g, &pts[3], xyz));
+    // Paths: size query, then a buffer that may be too small; every point inside the mesh.
+    size_t count = 0;
+    check(vg_path(g, ws, &pts[4], &pts[5], nullptr, 0, &count, &d));
+    std::vector<vg_path_point> path(std::min<size_t>(count, 1 + steer.u32() % 4096));
+    size_t written = 0;
+    const vg_status pathStatus = vg_path(g, ws, &pts[4], &pts[5], path.data(), path.size(), &written, &d);
+    check(pathStatus);
+    if (pathStatus == VG_OK)
+        for (size_t i = 0; i < written; ++i)
+            if (path[i].point.face >= F) std::abort();
     vg_point at;
     check(vg_vertex_point(g, vertex(steer, V), &at));
 

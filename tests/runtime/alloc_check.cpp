@@ -123,6 +123,11 @@ bool runAll(const std::vector<uint8_t>& blobBytes, const char* label) {
     size_t kIndex[2], found = 0;
     float kDist[2];
     ok = ok && check(vg_point_k_nearest(g, ws, &pts[3], pts, 3, 2, kIndex, kDist, &found), "vg_point_k_nearest");
+    vg_path_point path[256];
+    size_t pathCount = 0;
+    ok = ok && check(vg_path(g, ws, &pts[0], &pts[2], nullptr, 0, &pathCount, &d), "vg_path (size query)");
+    const vg_status pathStatus = vg_path(g, ws, &pts[0], &pts[2], path, 256, &pathCount, &d);
+    ok = ok && (pathStatus == VG_OK || pathStatus == VG_ERR_BUFFER_TOO_SMALL || check(pathStatus, "vg_path"));
     ok = ok && check(vg_vertex_point(g, 5, &pts[0]), "vg_vertex_point");
     vg_status_string(VG_ERR_CHECKSUM);
     vg_version_string();

@@ -89,6 +89,23 @@ int main(int argc, char** argv) {
     if (index >= 3) return fail("vg_nearest found nothing", VG_ERR_INVALID_ARGUMENT);
     st = vg_distance(graph, ws, 0, vertices, &d);
     if (st != VG_ERR_INVALID_VERTEX) return fail("an out-of-range vertex was accepted", st);
+    {
+        /* The path between vertex 0 and the last vertex: size query, then the points. */
+        vg_point from, to;
+        vg_path_point* path;
+        size_t count = 0;
+        float path_distance = 0.0f;
+        if (vg_vertex_point(graph, 0, &from) != VG_OK || vg_vertex_point(graph, vertices - 1, &to) != VG_OK)
+            return fail("vg_vertex_point", VG_ERR_INVALID_VERTEX);
+        st = vg_path(graph, ws, &from, &to, NULL, 0, &count, &path_distance);
+        if (st != VG_OK || count < 2) return fail("vg_path (size query)", st);
+        path = (vg_path_point*)malloc(sizeof(vg_path_point) * count);
+        st = vg_path(graph, ws, &from, &to, path, count, &count, &path_distance);
+        if (st != VG_OK) return fail("vg_path", st);
+        printf("path from 0 to %u: %lu points, distance %g\n", (unsigned)(vertices - 1), (unsigned long)count,
+               path_distance);
+        free(path);
+    }
     printf("d(0, %u) = %g; nearest of {%u, %u, %u} to 0 is #%lu\n", (unsigned)(vertices - 1), back,
            (unsigned)targets[0], (unsigned)targets[1], (unsigned)targets[2], (unsigned long)index);
 

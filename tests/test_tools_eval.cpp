@@ -164,3 +164,38 @@ TEST_CASE("vorogeo bench, render and voronoi run on a baked mesh", "[tools][cli]
     CHECK(test::runTool("voronoi " + mesh + " " + blob + " --out x.csv").status == 2);
     CHECK(test::runTool("bench " + mesh).status == 2);
 }
+
+TEST_CASE("vorogeo path prints, checks and draws a path; --random gives its statistics", "[tools][cli][paths]") {
+    const Fixture& f = fixture();
+    const std::string mesh = test::quote(f.meshPath), blob = test::quote(f.blobPath);
+    const std::string png = f.dir.file("path.png");
+    test::ToolResult r = test::runTool("path " + mesh + " " + blob + " --from 3,0.2,0.3 --to 700,0.1,0.1 --size 100x80 --png " +
+                                       test::quote(png));
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("path length") && Catch::Contains("on the surface: yes"));
+    int w = 0, h = 0, channels = 0;
+    unsigned char* pixels = stbi_load(png.c_str(), &w, &h, &channels, 3);
+    REQUIRE(pixels != nullptr);
+    CHECK(w == 100);
+    size_t white = 0;  // the path is drawn in white over the coloured field
+    for (int i = 0; i < w * h; ++i) white += pixels[3 * i] == 255 && pixels[3 * i + 1] == 255 && pixels[3 * i + 2] == 255;
+    stbi_image_free(pixels);
+    CHECK(white > 10);
+
+    r = test::runTool("path " + mesh + " " + blob + " --random 50 --json");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    for (const char* key : {"mean_length_rel_diff", "max_length_rel_diff", "path_p50_us", "distance_p50_us",
+                            "extraction_p50_us", "off_surface\":0"})
+        CHECK_THAT(r.out, Catch::Contains(key));
+
+    // Bad input names the problem.
+    r = test::runTool("path " + mesh + " " + blob + " --from 999999,0.2,0.3 --to 1,0.1,0.1");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Catch::Contains("out of range"));
+    r = test::runTool("path " + mesh + " " + blob + " --from 3,0.2 --to 1,0.1,0.1");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Catch::Contains("F,U,V"));
+    CHECK(test::runTool("path " + mesh + " " + blob).status == 2);
+}

@@ -270,11 +270,10 @@ private:
     uint32_t straightFaces_ = 0;
     static constexpr uint32_t kMaxStraightFaces = 32;
 
-    // Continues straight into face `next` (across `edge` of `face`, frame fr) towards s.
-    bool goStraight(uint32_t face, const FaceFrame& fr, uint32_t edge, uint32_t next, const float* s) {
+    // Continues straight into face `next` (across `edge` of the current face, frame fr) towards s.
+    bool goStraight(const FaceFrame& fr, uint32_t edge, uint32_t next, const float* s) {
         FaceFrame fg;
         if (!throughMargins_ || straightFaces_ >= kMaxStraightFaces || !faceFrame(g_, next / 3, fg)) return false;
-        (void)face;
         unfoldAcross(fr, edge, fg, next % 3, s, straightSource_);
         straight_ = true;
         ++straightFaces_;
@@ -355,7 +354,7 @@ private:
         if (exitT < kSnap) return toVertex(a, face);
         if (exitT > 1.0f - kSnap) return toVertex(b, face);
         const uint32_t next = across(3 * face + exitEdge);
-        if (next != kNone && !enter(g_.facePatch[next / 3]) && goStraight(face, fr, exitEdge, next, s)) {
+        if (next != kNone && !enter(g_.facePatch[next / 3]) && goStraight(fr, exitEdge, next, s)) {
             w_.edgePoint(g_, face, exitEdge, exitT);
             moveAcross(face, entered, bary, next, exitT);
             return kNone;
@@ -407,7 +406,7 @@ private:
         if (enter(g_.facePatch[next / 3])) {
             straight_ = false;
             straightFaces_ = 0;
-        } else if (!goStraight(face, fr, exitEdge, next, s)) {
+        } else if (!goStraight(fr, exitEdge, next, s)) {
             face = kNone;
             return kNone;
         }
@@ -569,7 +568,7 @@ private:
         const uint32_t next = across(3 * toFace + exitEdge);
         if (!enter(g_.facePatch[next / 3])) {
             FaceFrame fr;
-            if (!faceFrame(g_, toFace, fr) || !goStraight(toFace, fr, exitEdge, next, bestSource)) return false;
+            if (!faceFrame(g_, toFace, fr) || !goStraight(fr, exitEdge, next, bestSource)) return false;
         }
         w_.edgePoint(g_, toFace, exitEdge, exitT);
         moveAcross(face, entered, bary, next, exitT);

@@ -278,8 +278,14 @@ bool readPly(std::string_view data, PolygonSoup& soup, std::string& error) {
     if (!parseHeader(data, enc, elements, bodyStart, error)) return false;
 
     const Element* vertexElement = nullptr;
-    for (const Element& e : elements)
-        if (e.name == "vertex") vertexElement = &e;
+    for (const Element& e : elements) {
+        if (e.name != "vertex") continue;
+        if (vertexElement) {
+            error = "PLY header declares the 'vertex' element twice";
+            return false;
+        }
+        vertexElement = &e;
+    }
     if (!vertexElement) {
         error = "PLY header declares no 'vertex' element";
         return false;
@@ -346,7 +352,7 @@ bool readPly(std::string_view data, PolygonSoup& soup, std::string& error) {
                     }
                 }
             }
-        } else {
+        } else if (!e.props.empty()) {  // an element without properties takes no bytes, whatever its count
             for (uint64_t i = 0; i < e.count; ++i)
                 for (const Property& p : e.props)
                     if (!skipProperty(r, p)) {

@@ -481,6 +481,26 @@ private:
         float bestEst = __builtin_inff();
         uint32_t toNeighbour = kNone, toFace = kNone, exitEdge = 0, bestPatch = f_.patch;
         float exitT = 0.0f, bestSource[2] = {0.0f, 0.0f};
+        // Candidates: a neighbour vertex, or the point at fraction t of edge e of face f
+        // (with the virtual source in f's frame); the least estimated length wins.
+        auto offerNeighbour = [&](float est, uint32_t n, uint32_t patch) {
+            if (!(est < bestEst)) return;
+            bestEst = est;
+            toNeighbour = n;
+            toFace = kNone;
+            bestPatch = patch;
+        };
+        auto offerFace = [&](float est, uint32_t f, uint32_t e, float t, const float* src, uint32_t patch) {
+            if (!(est < bestEst)) return;
+            bestEst = est;
+            toNeighbour = kNone;
+            toFace = f;
+            exitEdge = e;
+            exitT = t;
+            bestPatch = patch;
+            bestSource[0] = src[0];
+            bestSource[1] = src[1];
+        };
         forEachPatchOf(g_, v, [&](uint32_t patch, uint32_t) {
             PatchField fq = f_;
             if (patch != f_.patch && (switches_ >= kMaxSwitches || !fq.moveTo(patch))) return;
@@ -494,22 +514,15 @@ private:
                 const float dist[2] = {da, db};
                 for (int i = 0; i < 2; ++i) {
                     if (dist[i] == __builtin_inff() || ws_.vertexStamp[ends[i]] == gen) continue;
-                    const float est = euclidean(g_, v, ends[i]) + dist[i];
-                    if (est < bestEst) {
-                        bestEst = est;
-                        toNeighbour = ends[i];
-                        toFace = kNone;
-                        bestPatch = patch;
-                    }
+                    offerNeighbour(euclidean(g_, v, ends[i]) + dist[i], ends[i], patch);
                 }
                 if (da == __builtin_inff() || db == __builtin_inff() || dv == __builtin_inff()) return;
                 const uint32_t e = (k + 1) % 3;  // the edge opposite v
                 const uint32_t beyond = across(3 * f + e);
                 PatchField probe = fq;
                 if (beyond == kNone ||
-                    (!throughMargins_ && (switches_ + 2 > kMaxSwitches || !probe.moveTo(g_.facePatch[beyond / 3])))) {
+                    (!throughMargins_ && (switches_ + 2 > kMaxSwitches || !probe.moveTo(g_.facePatch[beyond / 3]))))
                     return;
-                }
                 FaceFrame fr;
                 if (!faceFrame(g_, f, fr)) return;
                 float D[3], s[2], q[2], t, l;
@@ -522,38 +535,16 @@ private:
                     // The way may leave v outside the field's patches: turn around v to the face it enters.
                     uint32_t g2, e2;
                     float t2, s2[2];
-                    if (marginFace(v, f, k, fr, s, g2, e2, t2, s2)) {
-                        const float est = __builtin_sqrtf((s[0] - q[0]) * (s[0] - q[0]) + (s[1] - q[1]) * (s[1] - q[1]));
-                        if (est < bestEst) {
-                            bestEst = est;
-                            toNeighbour = kNone;
-                            toFace = g2;
-                            exitEdge = e2;
-                            exitT = t2;
-                            bestPatch = patch;
-                            bestSource[0] = s2[0];
-                            bestSource[1] = s2[1];
-                        }
-                    }
+                    if (marginFace(v, f, k, fr, s, g2, e2, t2, s2))
+                        offerFace(__builtin_sqrtf((s[0] - q[0]) * (s[0] - q[0]) + (s[1] - q[1]) * (s[1] - q[1])), g2, e2,
+                                  t2, s2, patch);
                 }
-                if (!rayHitsEdge(fr, q, s, e, t, l) || !(t > kSnap && t < 1.0f - kSnap)) {
-                    return;
-                }
+                if (!rayHitsEdge(fr, q, s, e, t, l) || !(t > kSnap && t < 1.0f - kSnap)) return;
                 const float* pa = g_.positions + 3 * uint64_t(a);
                 const float* pb = g_.positions + 3 * uint64_t(b);
                 float x[3];
                 for (int i = 0; i < 3; ++i) x[i] = pa[i] + t * (pb[i] - pa[i]);
-                const float est = distance3(pv, x) + alongEdge(da, db, distance3(pa, pb), t);
-                if (est < bestEst) {
-                    bestEst = est;
-                    toNeighbour = kNone;
-                    toFace = f;
-                    exitEdge = e;
-                    exitT = t;
-                    bestPatch = patch;
-                    bestSource[0] = s[0];
-                    bestSource[1] = s[1];
-                }
+                offerFace(distance3(pv, x) + alongEdge(da, db, distance3(pa, pb), t), f, e, t, s, patch);
             });
         });
         if (toNeighbour == kNone && toFace == kNone) return false;

@@ -187,7 +187,7 @@ TEST_CASE("vorogeo path prints, checks and draws a path; --random gives its stat
     INFO(r.out << r.err);
     REQUIRE(r.status == 0);
     for (const char* key : {"mean_length_rel_diff", "max_length_rel_diff", "path_p50_us", "distance_p50_us",
-                            "extraction_p50_us", "off_surface\":0"})
+                            "distance_p90_us", "extraction_p50_us", "extraction_p90_us", "off_surface\":0"})
         CHECK_THAT(r.out, Catch::Contains(key));
 
     // Bad input names the problem.

@@ -54,16 +54,7 @@ int runBench(int argc, char** argv) {
     Mesh mesh;
     if (!loadMeshForCommand("bench", args.positional()[0], args.flag("--repair"), mesh)) return 1;
     RuntimeGraph graph;
-    std::string error;
-    if (!graph.load(args.positional()[1], error)) {
-        std::fprintf(stderr, "vorogeo bench: %s\n", error.c_str());
-        return 1;
-    }
-    if (graph.vertexCount() != mesh.vertexCount()) {
-        std::fprintf(stderr, "vorogeo bench: the blob has %u vertices but the mesh has %u: not baked from this mesh\n",
-                     graph.vertexCount(), mesh.vertexCount());
-        return 1;
-    }
+    if (!loadBlobForMesh("bench", args.positional()[1], mesh, false, graph)) return 1;
     const uint32_t V = mesh.vertexCount();
     std::mt19937_64 rng(seed);
     std::uniform_int_distribution<uint32_t> pick(0, V - 1);

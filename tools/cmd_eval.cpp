@@ -64,19 +64,11 @@ int runEval(int argc, char** argv) {
     Mesh mesh;
     if (!loadMeshForCommand("eval", args.positional()[0], args.flag("--repair"), mesh)) return 1;
     RuntimeGraph graph;
-    std::string error;
-    if (!graph.load(args.positional()[1], error)) {
-        std::fprintf(stderr, "vorogeo eval: %s\n", error.c_str());
-        return 1;
-    }
-    if (graph.vertexCount() != mesh.vertexCount()) {
-        std::fprintf(stderr, "vorogeo eval: the blob has %u vertices but the mesh has %u: not baked from this mesh\n",
-                     graph.vertexCount(), mesh.vertexCount());
-        return 1;
-    }
+    if (!loadBlobForMesh("eval", args.positional()[1], mesh, false, graph)) return 1;
 
     std::vector<DistancePair> pairs;
     if (args.has("--golden")) {
+        std::string error;
         if (!readPairs(args.str("--golden"), pairs, error)) {
             std::fprintf(stderr, "vorogeo eval: %s\n", error.c_str());
             return 1;

@@ -42,17 +42,7 @@ int runEvalPoints(int argc, char** argv) {
     Mesh mesh;
     if (!loadMeshForCommand("eval-points", args.positional()[0], args.flag("--repair"), mesh)) return 1;
     RuntimeGraph graph;
-    std::string error;
-    if (!graph.load(args.positional()[1], error)) {
-        std::fprintf(stderr, "vorogeo eval-points: %s\n", error.c_str());
-        return 1;
-    }
-    if (graph.vertexCount() != mesh.vertexCount() || vg_face_count(graph.graph()) != mesh.faceCount()) {
-        std::fprintf(stderr, "vorogeo eval-points: the blob has %u vertices and %u faces but the mesh has %u and %u: "
-                     "not baked from this mesh\n", graph.vertexCount(), vg_face_count(graph.graph()),
-                     mesh.vertexCount(), mesh.faceCount());
-        return 1;
-    }
+    if (!loadBlobForMesh("eval-points", args.positional()[1], mesh, true, graph)) return 1;
 
     Stopwatch exactWatch;
     const std::vector<PointPair> pairs = exactPointPairs(mesh, size_t(pairCount), size_t(perSource), seed);

@@ -175,17 +175,7 @@ int runPath(int argc, char** argv) {
     Mesh mesh;
     if (!loadMeshForCommand("path", args.positional()[0], args.flag("--repair"), mesh)) return 1;
     RuntimeGraph graph;
-    std::string error;
-    if (!graph.load(args.positional()[1], error)) {
-        std::fprintf(stderr, "vorogeo path: %s\n", error.c_str());
-        return 1;
-    }
-    if (graph.vertexCount() != mesh.vertexCount() || vg_face_count(graph.graph()) != mesh.faceCount()) {
-        std::fprintf(stderr, "vorogeo path: the blob has %u vertices and %u faces but the mesh has %u and %u: "
-                     "not baked from this mesh\n", graph.vertexCount(), vg_face_count(graph.graph()),
-                     mesh.vertexCount(), mesh.faceCount());
-        return 1;
-    }
+    if (!loadBlobForMesh("path", args.positional()[1], mesh, true, graph)) return 1;
     if (random) return randomPaths(args, mesh, graph);
 
     const vg_point s = parsePoint(args.str("--from"), "--from", mesh.faceCount());
@@ -233,6 +223,7 @@ int runPath(int argc, char** argv) {
         panel.caption = caption;
         for (const vg_path_point& p : path) panel.polyline.push_back(Vec3{p.position[0], p.position[1], p.position[2]});
         const Image image = renderPanels(mesh, {panel}, width, height, view);
+        std::string error;
         if (!writePng(image, args.str("--png"), error)) {
             std::fprintf(stderr, "vorogeo path: %s\n", error.c_str());
             return 1;

@@ -57,16 +57,7 @@ int runRender(int argc, char** argv) {
     std::vector<double> runtime, exact;
     if (args.has("--blob")) {
         RuntimeGraph graph;
-        std::string error;
-        if (!graph.load(args.str("--blob"), error)) {
-            std::fprintf(stderr, "vorogeo render: %s\n", error.c_str());
-            return 1;
-        }
-        if (graph.vertexCount() != mesh.vertexCount()) {
-            std::fprintf(stderr, "vorogeo render: the blob has %u vertices but the mesh has %u: not baked from this mesh\n",
-                         graph.vertexCount(), mesh.vertexCount());
-            return 1;
-        }
+        if (!loadBlobForMesh("render", args.str("--blob"), mesh, false, graph)) return 1;
         RuntimeWorkspace ws(graph);
         Stopwatch watch;
         const std::vector<float> f = ws.field({uint32_t(source)});

@@ -49,16 +49,7 @@ int runVoronoi(int argc, char** argv) {
     Mesh mesh;
     if (!loadMeshForCommand("voronoi", args.positional()[0], args.flag("--repair"), mesh)) return 1;
     RuntimeGraph graph;
-    std::string error;
-    if (!graph.load(args.positional()[1], error)) {
-        std::fprintf(stderr, "vorogeo voronoi: %s\n", error.c_str());
-        return 1;
-    }
-    if (graph.vertexCount() != mesh.vertexCount()) {
-        std::fprintf(stderr, "vorogeo voronoi: the blob has %u vertices but the mesh has %u: not baked from this mesh\n",
-                     graph.vertexCount(), mesh.vertexCount());
-        return 1;
-    }
+    if (!loadBlobForMesh("voronoi", args.positional()[1], mesh, false, graph)) return 1;
     checkWritable(args.str("--out"));
 
     double radius = 0;
@@ -120,6 +111,7 @@ int runVoronoi(int argc, char** argv) {
         for (uint32_t s : seeds) p.vertexColour[s] = Rgb{20, 20, 20};
         p.isoSpacing = 1;
         p.caption = "geodesic Voronoi cells of " + std::to_string(seeds.size()) + " seeds";
+        std::string error;
         if (!writePng(renderPanels(mesh, {p}, width, height, view), args.str("--png"), error)) {
             std::fprintf(stderr, "vorogeo voronoi: %s\n", error.c_str());
             return 1;

@@ -38,6 +38,7 @@ enum class MeshFormat { Obj, Off, PlyAscii, PlyBinary, StlAscii, StlBinary };
 
 // Writes positions and faces (the faces may be invalid: tests write broken soups).
 // PLY stores doubles so that a round trip is exact; STL can only hold float32.
+// Atomic: written to a temporary file beside PATH and renamed, so a failure leaves no file.
 bool writeMesh(const Mesh& mesh, const std::string& path, MeshFormat format, std::string& error);
 // Format by extension: .obj, .off, .ply (binary), .stl (binary).
 bool writeMesh(const Mesh& mesh, const std::string& path, std::string& error);

@@ -4,6 +4,9 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
+#include <string>
+
+#include <unistd.h>
 
 #include "mesh_io.h"
 
@@ -154,21 +157,32 @@ void writeStl(const Mesh& m, Writer& w, bool binary) {
 }  // namespace
 
 bool writeMesh(const Mesh& mesh, const std::string& path, MeshFormat format, std::string& error) {
-    Writer w(path);
-    if (!w.open()) {
-        error = path + ": cannot create file (" + std::strerror(errno) + ")";
-        return false;
+    // Written next to the destination and renamed into place, so that a failed write
+    // (full disk, interrupted tool) never leaves a partial mesh under the final name.
+    const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+    {
+        Writer w(tmp);
+        if (!w.open()) {
+            error = path + ": cannot create file (" + std::strerror(errno) + ")";
+            return false;
+        }
+        switch (format) {
+            case MeshFormat::Obj: writeObj(mesh, w); break;
+            case MeshFormat::Off: writeOff(mesh, w); break;
+            case MeshFormat::PlyBinary: writePly(mesh, w, true); break;
+            case MeshFormat::PlyAscii: writePly(mesh, w, false); break;
+            case MeshFormat::StlAscii: writeStl(mesh, w, false); break;
+            case MeshFormat::StlBinary: writeStl(mesh, w, true); break;
+        }
+        if (!w.close()) {
+            error = path + ": write failed (" + std::strerror(errno) + ")";
+            std::remove(tmp.c_str());
+            return false;
+        }
     }
-    switch (format) {
-        case MeshFormat::Obj: writeObj(mesh, w); break;
-        case MeshFormat::Off: writeOff(mesh, w); break;
-        case MeshFormat::PlyBinary: writePly(mesh, w, true); break;
-        case MeshFormat::PlyAscii: writePly(mesh, w, false); break;
-        case MeshFormat::StlAscii: writeStl(mesh, w, false); break;
-        case MeshFormat::StlBinary: writeStl(mesh, w, true); break;
-    }
-    if (!w.close()) {
-        error = path + ": write failed (" + std::strerror(errno) + ")";
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        error = path + ": cannot rename the written file into place (" + std::strerror(errno) + ")";
+        std::remove(tmp.c_str());
         return false;
     }
     return true;

@@ -21,6 +21,7 @@ int runPath(int argc, char** argv);
 int runRender(int argc, char** argv);
 int runBench(int argc, char** argv);
 int runVoronoi(int argc, char** argv);
+int runSubdivide(int argc, char** argv);
 }  // namespace vorogeo::tools
 
 namespace {
@@ -41,6 +42,7 @@ const Command kCommands[] = {
     {"voronoi", "geodesic Voronoi cells by growing spheres (thesis 3.8) vs one labelling query", vorogeo::tools::runVoronoi},
     {"render", "picture of a distance field (runtime, exact, error) as PNG or coloured PLY", vorogeo::tools::runRender},
     {"bench-exact", "benchmark the exact engine against edge Dijkstra", vorogeo::tools::runBenchExact},
+    {"subdivide", "Loop subdivision (4x the faces per round), for scaling measurements", vorogeo::tools::runSubdivide},
     {nullptr, nullptr, nullptr},  // sentinel, keeps the array non-empty
 };
 

@@ -11,23 +11,33 @@ namespace {
 using namespace vg;
 
 // Lowers best[0..n) to base + the packed row entries k0.. (interior slots of a patch),
-// remembering which reached node gave each. Entries are decoded two per three bytes.
+// remembering which reached node gave each. Decoded in chunks so that the comparison loop
+// is branch-free and vectorises.
 inline void lowerRow(const uint8_t* packed, uint64_t k0, uint32_t n, float base, float scale, uint32_t node,
-                     float* best, uint32_t* bestNode) {
-    auto take = [&](uint32_t q, uint32_t j) {
-        const float d = q == kNoPathQuantum ? __builtin_inff() : base + float(q) * scale;
-        const bool lower = d < best[j];
-        best[j] = lower ? d : best[j];
-        bestNode[j] = lower ? node : bestNode[j];
-    };
-    uint32_t j = 0;
-    if ((k0 & 1) && n > 0) take(quantum(packed, k0), j++);
-    const uint8_t* b = packed + 3 * ((k0 + j) >> 1);
-    for (; j + 1 < n; j += 2, b += 3) {
-        take(uint32_t(b[0]) | ((uint32_t(b[1]) & 0xFu) << 8), j);
-        take((uint32_t(b[1]) >> 4) | (uint32_t(b[2]) << 4), j + 1);
+                     float* __restrict best, uint32_t* __restrict bestNode) {
+    constexpr uint32_t kChunk = 64;
+    float d[kChunk];
+    for (uint32_t j0 = 0; j0 < n; j0 += kChunk) {
+        const uint32_t m = n - j0 < kChunk ? n - j0 : kChunk;
+        auto put = [&](uint32_t t, uint32_t q) { d[t] = q == kNoPathQuantum ? __builtin_inff() : base + float(q) * scale; };
+        const uint64_t k = k0 + j0;
+        uint32_t t = 0;
+        if (k & 1) put(t++, quantum(packed, k));
+        const uint8_t* g = packed + 3 * ((k + t) >> 1);
+        for (; t + 1 < m; t += 2, g += 3) {  // two entries per three bytes
+            put(t, uint32_t(g[0]) | ((uint32_t(g[1]) & 0xFu) << 8));
+            put(t + 1, (uint32_t(g[1]) >> 4) | (uint32_t(g[2]) << 4));
+        }
+        if (t < m) put(t, quantum(packed, k + t));
+        float* __restrict b = best + j0;
+        uint32_t* __restrict bn = bestNode + j0;
+        for (uint32_t x = 0; x < m; ++x) {
+            const float v = d[x], cur = b[x];
+            const uint32_t mask = 0u - uint32_t(v < cur);  // a select written as a mask vectorises
+            b[x] = v < cur ? v : cur;
+            bn[x] = (node & mask) | (bn[x] & ~mask);
+        }
     }
-    if (j < n) take(quantum(packed, k0 + j), j);
 }
 
 // The path to an interior vertex may cross the border on an edge next to its best node

@@ -71,10 +71,13 @@ struct vg_graph {
 
 namespace vg {
 
-// Entry k of a packed 12-bit array, in quanta.
+// Entry k of a packed 12-bit array, in quanta. It starts at bit 12k, so the 16 bits from
+// byte 12k / 8 hold it shifted by 0 or 4 (branch-free: column walks meet both parities
+// in no predictable order).
 inline uint32_t quantum(const uint8_t* packed, uint64_t k) {
-    const uint8_t* p = packed + 3 * (k >> 1);
-    return (k & 1) ? (uint32_t(p[1]) >> 4) | (uint32_t(p[2]) << 4) : uint32_t(p[0]) | ((uint32_t(p[1]) & 0xFu) << 8);
+    const uint8_t* p = packed + ((3 * k) >> 1);
+    const uint32_t word = uint32_t(p[0]) | (uint32_t(p[1]) << 8);
+    return (word >> ((uint32_t(k) & 1u) << 2)) & 0xFFFu;
 }
 
 // Second layer (upper triangle): first entry of row i, its entry for column i + 1.

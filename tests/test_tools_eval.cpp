@@ -125,6 +125,11 @@ TEST_CASE("vorogeo bench, render and voronoi run on a baked mesh", "[tools][cli]
     for (const char* key : {"sssd_p50_us", "sssd_p99_us", "msad_p50_ms", "exact_ssad_p50_ms", "exact_sssd_p50_ms",
                             "dijkstra_sssd_p50_us", "dijkstra_ssad_p50_ms", "field_mean_rel_error"})
         CHECK_THAT(r.out, Catch::Contains(std::string("\"") + key + "\":"));
+    r = test::runTool("bench " + mesh + " " + blob + " --pairs 50 --sources 2 --json --runtime-only");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("\"sssd_p50_us\":") && Catch::Contains("\"msad_p50_ms\":"));
+    CHECK_THAT(r.out, !Catch::Contains("exact_ssad_p50_ms"));
 
     const std::string png = f.dir.file("field.png"), ply = f.dir.file("field.ply");
     r = test::runTool("render " + mesh + " --blob " + blob + " --source 3 --exact --size 120x90 --out " +

@@ -11,30 +11,31 @@ namespace {
 using namespace vg;
 
 // Lowers best[0..n) to base + the packed row entries k0.. (interior slots of a patch),
-// remembering which reached node gave each. Decoded in chunks so that the comparison loop
-// is branch-free and vectorises.
+// remembering which reached node gave each. The quanta are unpacked in chunks so that the
+// conversion and comparison loop is branch-free and vectorises.
 inline void lowerRow(const uint8_t* packed, uint64_t k0, uint32_t n, float base, float scale, uint32_t node,
                      float* __restrict best, uint32_t* __restrict bestNode) {
     constexpr uint32_t kChunk = 64;
-    float d[kChunk];
+    uint32_t q[kChunk];
     for (uint32_t j0 = 0; j0 < n; j0 += kChunk) {
         const uint32_t m = n - j0 < kChunk ? n - j0 : kChunk;
-        auto put = [&](uint32_t t, uint32_t q) { d[t] = q == kNoPathQuantum ? __builtin_inff() : base + float(q) * scale; };
+        // Two quanta per three bytes.
         const uint64_t k = k0 + j0;
         uint32_t t = 0;
-        if (k & 1) put(t++, quantum(packed, k));
+        if (k & 1) q[t] = quantum(packed, k), ++t;
         const uint8_t* g = packed + 3 * ((k + t) >> 1);
-        for (; t + 1 < m; t += 2, g += 3) {  // two entries per three bytes
-            put(t, uint32_t(g[0]) | ((uint32_t(g[1]) & 0xFu) << 8));
-            put(t + 1, (uint32_t(g[1]) >> 4) | (uint32_t(g[2]) << 4));
+        for (; t + 1 < m; t += 2, g += 3) {
+            q[t] = uint32_t(g[0]) | ((uint32_t(g[1]) & 0xFu) << 8);
+            q[t + 1] = (uint32_t(g[1]) >> 4) | (uint32_t(g[2]) << 4);
         }
-        if (t < m) put(t, quantum(packed, k + t));
+        if (t < m) q[t] = quantum(packed, k + t);
         float* __restrict b = best + j0;
         uint32_t* __restrict bn = bestNode + j0;
         for (uint32_t x = 0; x < m; ++x) {
-            const float v = d[x], cur = b[x];
-            const uint32_t mask = 0u - uint32_t(v < cur);  // a select written as a mask vectorises
-            b[x] = v < cur ? v : cur;
+            const float v = base + float(int32_t(q[x])) * scale, cur = b[x];
+            const bool lower = (v < cur) & (q[x] != kNoPathQuantum);
+            const uint32_t mask = 0u - uint32_t(lower);  // selects written as masks vectorise
+            b[x] = lower ? v : cur;
             bn[x] = (node & mask) | (bn[x] & ~mask);
         }
     }

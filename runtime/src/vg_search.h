@@ -43,7 +43,7 @@ inline void relaxSecondRow(const vg_graph& g, uint32_t patch, uint32_t i, float 
         onImprove(v, dv);
     };
     const uint32_t before = i < p.nodeCount ? i : p.nodeCount;  // an endpoint's slot may follow the nodes
-    // Column i above the diagonal: entry (j, i) sits slotCount - j - 2 after entry (j - 1, i).
+    // Column i above the diagonal: entry (j + 1, i) sits slotCount - j - 2 after entry (j, i).
     uint64_t k = p.matrixBegin + i - 1;
     for (uint32_t j = 0; j < before; k += p.slotCount - j - 2, ++j) visit(j, k);
     const uint64_t row = rowStart(p, i) - (i + 1);

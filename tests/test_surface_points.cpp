@@ -274,8 +274,12 @@ std::vector<double> pathLengthDifferences(const Baked& b, size_t pairs, uint64_t
     for (size_t i = 0; i < pairs; ++i) {
         const vg_point s = tools::toRuntimePoint(pts[2 * i]), t = tools::toRuntimePoint(pts[2 * i + 1]);
         const float d = pathBetween(b.graph, ws, s, t, path);
-        CHECK(d == pointDistance(b.graph, ws, s, t));
+        const float searched = pointDistance(b.graph, ws, s, t);
         const tools::PathCheck c = checker.check(path);
+        // The path's distance is the search's, or the path's length where that is shorter.
+        CHECK(d <= searched);
+        if (c.length < searched * (1 - 1e-6)) CHECK(d == Approx(c.length).epsilon(1e-5));
+        else CHECK(d == searched);
         INFO("pair " << i << ": " << c.problem);
         CHECK(c.ok);
         REQUIRE(path.size() >= 2);
@@ -295,16 +299,41 @@ std::vector<double> pathLengthDifferences(const Baked& b, size_t pairs, uint64_t
 }  // namespace
 
 TEST_CASE("paths: on the surface, joining the points, as long as the distance", "[points][paths]") {
-    // These meshes are coarse (1,800 and 1,600 vertices, a few dozen per patch), where the
-    // per-face field model is rougher than on real meshes (igea: mean 0.02%, BENCHMARKS.md).
+    // Where the path is longer than its distance, the distance is below the geodesic (no
+    // path can be that short): coarse meshes (1,800 and 1,600 vertices, a few dozen per
+    // patch) have more such pairs than real ones (igea: 1 of 2,000, BENCHMARKS.md).
     for (const char* name : {"bumpy", "plane"}) {
         const std::vector<double> diffs = pathLengthDifferences(baked(name), 300, 41);
         const double median = diffs[diffs.size() / 2], p90 = diffs[diffs.size() * 9 / 10];
         INFO(name << ": length vs distance median " << median << ", p90 " << p90 << ", max " << diffs.back());
-        CHECK(median < 2e-3);
-        CHECK(p90 < 1e-2);
-        CHECK(diffs.back() < 0.1);
+        CHECK(median < 1e-5);
+        CHECK(p90 < 5e-3);
+        CHECK(diffs.back() < 0.05);
     }
+}
+
+TEST_CASE("paths: pulled taut, within a hair of the exact geodesic", "[points][paths]") {
+    const Baked& b = baked("bumpy");
+    RuntimeWorkspace ws(b.graph);
+    const std::vector<tools::PointPair> pairs = tools::exactPointPairs(b.mesh, 400, 20, 59);
+    std::vector<vg_path_point> path;
+    double sum = 0, worst = 0, shortest = 1;
+    for (const tools::PointPair& p : pairs) {
+        const vg_point s = tools::toRuntimePoint(p.source), t = tools::toRuntimePoint(p.target);
+        const float d = pathBetween(b.graph, ws, s, t, path);
+        const double excess = (tools::polylineLength(path) - p.distance) / p.distance;
+        sum += excess;
+        worst = std::max(worst, excess);
+        shortest = std::min(shortest, excess);
+        // A path on the surface is never shorter than the geodesic (float rounding aside),
+        // and neither is the distance it reports.
+        CHECK(excess > -1e-5);
+        CHECK(d <= pointDistance(b.graph, ws, s, t));
+    }
+    const double mean = sum / double(pairs.size());
+    INFO("path length over the exact distance: mean " << mean << ", max " << worst << ", min " << shortest);
+    CHECK(mean < 5e-4);
+    CHECK(worst < 0.02);
 }
 
 TEST_CASE("paths: on a plane, the straight segment", "[points][paths]") {
@@ -318,9 +347,9 @@ TEST_CASE("paths: on a plane, the straight segment", "[points][paths]") {
         const double straight = distance(positionOf(b.mesh, pts[i]), positionOf(b.mesh, pts[i + 1]));
         worst = std::max(worst, (tools::polylineLength(path) - straight) / straight);
     }
-    // The path bends only where the distance does (a border node next to a third patch).
+    // Pulled taut, the path is the segment up to float rounding of the unfolded corridor.
     INFO("worst excess over the straight segment " << worst);
-    CHECK(worst < 0.04);
+    CHECK(worst < 1e-3);
 }
 
 TEST_CASE("paths: the reverse path is the same polyline backwards", "[points][paths]") {

@@ -20,7 +20,7 @@ namespace {
 
 const char* kUsage =
     "usage: vorogeo path MESH BLOB --from F,U,V --to F,U,V [--png OUT.png] [--size WxH] [--view YAW,PITCH]\n"
-    "       vorogeo path MESH BLOB --random N [--seed S] [--json]\n"
+    "       vorogeo path MESH BLOB --random N [--seed S] [--exact] [--json]\n"
     "  A point F,U,V is face F at barycentric weights (1-U-V, U, V) of its three vertices.\n"
     "  Prints the path from vg_path (face, weights and position per point), its length, the\n"
     "  distance returned with it and their relative difference, and checks that it lies on\n"
@@ -28,7 +28,11 @@ const char* kUsage =
     "  --random N takes N random point pairs (uniform over the area): relative difference of\n"
     "  length and distance (mean, p99, max), points per path, surface checks, and the time of\n"
     "  vg_path next to vg_point_distance on the same pair (interleaved, alternating which\n"
-    "  goes first; p50, p90, ratio; extraction = the per-pair difference).\n";
+    "  goes first; p50, p90, ratio; extraction = the per-pair difference).\n"
+    "  --exact also runs the exact engine from the sources (50 targets each) and compares the\n"
+    "  path length and the distance with the exact geodesic distance; it counts the pairs\n"
+    "  whose distance is below the exact one by more than 0.1% (no path on the surface can be\n"
+    "  that short) among those whose length and distance differ by more than 0.1%.\n";
 
 vg_point parsePoint(const std::string& text, const std::string& option, uint32_t faceCount) {
     char* end = nullptr;
@@ -69,15 +73,27 @@ int randomPaths(const cli::Args& args, const Mesh& mesh, const RuntimeGraph& gra
     const long long count = args.integer("--random", 1000);
     if (count < 1) throw cli::UsageError("--random must be >= 1");
     const uint64_t seed = uint64_t(args.integer("--seed", 1));
-    const std::vector<SurfacePoint> points = randomSurfacePoints(mesh, 2 * size_t(count), seed);
+    const bool withExact = args.flag("--exact");
+    std::vector<PointPair> pairs;
+    if (withExact) {
+        pairs = exactPointPairs(mesh, size_t(count), 50, seed);
+    } else {
+        const std::vector<SurfacePoint> points = randomSurfacePoints(mesh, 2 * size_t(count), seed);
+        pairs.resize(size_t(count));
+        for (size_t i = 0; i < pairs.size(); ++i) {
+            pairs[i].source = points[2 * i];
+            pairs[i].target = points[2 * i + 1];
+        }
+    }
     RuntimeWorkspace ws(graph);
     const PathChecker checker(mesh);
     std::vector<vg_path_point> path(4096);
-    std::vector<double> diffs, pathUs, distanceUs, extraUs, sizes;
-    size_t unreachable = 0, offSurface = 0, over01 = 0;
+    std::vector<double> diffs, pathUs, distanceUs, extraUs, sizes, pathVsExact, distanceVsExact;
+    std::vector<double> vsPoint;
+    size_t unreachable = 0, offSurface = 0, over01 = 0, over01Undercut = 0, pathShorter01 = 0;
     std::string firstProblem;
     for (long long i = 0; i < count; ++i) {
-        const vg_point s = toRuntimePoint(points[2 * i]), t = toRuntimePoint(points[2 * i + 1]);
+        const vg_point s = toRuntimePoint(pairs[size_t(i)].source), t = toRuntimePoint(pairs[size_t(i)].target);
         float d = 0, dp = 0;
         vg_status st = VG_OK, pst = VG_OK;
         double distanceTime = 0, pathTime = 0;
@@ -105,9 +121,9 @@ int randomPaths(const cli::Args& args, const Mesh& mesh, const RuntimeGraph& gra
                          vg_status_string(st != VG_OK ? st : pst));
             return 1;
         }
-        if (dp != d) {
-            std::fprintf(stderr, "vorogeo path: pair %lld: vg_path distance %.9g differs from vg_point_distance %.9g\n",
-                         i, dp, d);
+        if (!(dp <= d) && !(std::isinf(dp) && std::isinf(d))) {
+            std::fprintf(stderr, "vorogeo path: pair %lld: vg_path distance %.9g exceeds vg_point_distance %.9g\n", i,
+                         dp, d);
             return 1;
         }
         if (!std::isfinite(d)) {
@@ -116,8 +132,17 @@ int randomPaths(const cli::Args& args, const Mesh& mesh, const RuntimeGraph& gra
         }
         const PathCheck c = checker.check(path);
         if (!c.ok && offSurface++ == 0) firstProblem = "pair " + std::to_string(i) + ": " + c.problem;
-        const double diff = relativeDifference(c.length, d);
+        const double diff = relativeDifference(c.length, dp);
         over01 += diff > 1e-3;
+        const double shorter = (d - c.length) / d;  // against vg_point_distance
+        vsPoint.push_back(shorter);
+        pathShorter01 += shorter > 1e-3;
+        if (withExact && pairs[size_t(i)].distance > 0) {
+            const double exact = pairs[size_t(i)].distance;
+            pathVsExact.push_back((c.length - exact) / exact);
+            distanceVsExact.push_back(std::fabs(d - exact) / exact);
+            over01Undercut += diff > 1e-3 && dp < exact * (1 - 1e-3);
+        }
         diffs.push_back(diff);
         sizes.push_back(double(path.size()));
         pathUs.push_back(pathTime);
@@ -128,17 +153,41 @@ int randomPaths(const cli::Args& args, const Mesh& mesh, const RuntimeGraph& gra
     for (double x : diffs) mean += x;
     mean = diffs.empty() ? 0 : mean / double(diffs.size());
     const double maxDiff = diffs.empty() ? 0 : *std::max_element(diffs.begin(), diffs.end());
+    const auto meanOf = [](const std::vector<double>& v) {
+        double sum = 0;
+        for (double x : v) sum += x;
+        return v.empty() ? 0.0 : sum / double(v.size());
+    };
+    const auto maxOf = [](const std::vector<double>& v) { return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()); };
+    const auto minOf = [](const std::vector<double>& v) { return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end()); };
+    char exactJson[512] = "", exactText[512] = "";
+    if (withExact) {
+        std::snprintf(exactJson, sizeof exactJson,
+                      ",\"path_vs_exact_mean\":%.6e,\"path_vs_exact_p99\":%.6e,\"path_vs_exact_max\":%.6e,"
+                      "\"path_vs_exact_min\":%.6e,\"distance_vs_exact_mean\":%.6e,\"over_0_1pct_distance_undercut\":%zu",
+                      meanOf(pathVsExact), percentile(pathVsExact, 99), maxOf(pathVsExact), minOf(pathVsExact),
+                      meanOf(distanceVsExact), over01Undercut);
+        std::snprintf(exactText, sizeof exactText,
+                      "path length over the exact distance: mean %.4f%%, p99 %.4f%%, max %.4f%%, min %.4f%%; "
+                      "distance vs exact: mean %.4f%%; of the paths over 0.1%%, %zu have a distance more than "
+                      "0.1%% below the exact one\n",
+                      meanOf(pathVsExact) * 100, percentile(pathVsExact, 99) * 100, maxOf(pathVsExact) * 100,
+                      minOf(pathVsExact) * 100, meanOf(distanceVsExact) * 100, over01Undercut);
+    }
     if (args.flag("--json")) {
         std::printf("{\"mesh\":\"%s\",\"vertices\":%u,\"paths\":%zu,\"unreachable\":%zu,\"off_surface\":%zu,"
                     "\"mean_length_rel_diff\":%.6e,\"p99_length_rel_diff\":%.6e,\"max_length_rel_diff\":%.6e,"
                     "\"paths_over_0_1pct\":%zu,\"points_p50\":%.0f,\"points_max\":%.0f,\"path_p50_us\":%.2f,"
                     "\"path_p90_us\":%.2f,\"distance_p50_us\":%.2f,\"distance_p90_us\":%.2f,"
-                    "\"extraction_p50_us\":%.2f,\"extraction_p90_us\":%.2f,\"path_over_distance_p50\":%.3f}\n",
+                    "\"extraction_p50_us\":%.2f,\"extraction_p90_us\":%.2f,\"path_over_distance_p50\":%.3f,"
+                    "\"shorter_than_point_distance_mean\":%.6e,\"shorter_than_point_distance_max\":%.6e,"
+                    "\"shorter_than_point_distance_over_0_1pct\":%zu%s}\n",
                     args.positional()[0].c_str(), mesh.vertexCount(), diffs.size(), unreachable, offSurface, mean,
                     percentile(diffs, 99), maxDiff, over01, percentile(sizes, 50),
                     sizes.empty() ? 0.0 : *std::max_element(sizes.begin(), sizes.end()), percentile(pathUs, 50),
                     percentile(pathUs, 90), percentile(distanceUs, 50), percentile(distanceUs, 90),
-                    percentile(extraUs, 50), percentile(extraUs, 90), percentile(pathUs, 50) / percentile(distanceUs, 50));
+                    percentile(extraUs, 50), percentile(extraUs, 90), percentile(pathUs, 50) / percentile(distanceUs, 50),
+                    meanOf(vsPoint), maxOf(vsPoint), pathShorter01, exactJson);
     } else {
         std::printf("%s: %u vertices; %zu paths (%zu unreachable pairs)\n", args.positional()[0].c_str(),
                     mesh.vertexCount(), diffs.size(), unreachable);
@@ -150,6 +199,9 @@ int randomPaths(const cli::Args& args, const Mesh& mesh, const RuntimeGraph& gra
                     percentile(pathUs, 50), percentile(pathUs, 90), percentile(distanceUs, 50),
                     percentile(distanceUs, 90), percentile(extraUs, 50), percentile(extraUs, 90),
                     percentile(pathUs, 50) / percentile(distanceUs, 50));
+        std::printf("path shorter than vg_point_distance: mean %.4f%%, max %.4f%%, %zu paths by more than 0.1%%\n",
+                    meanOf(vsPoint) * 100, maxOf(vsPoint) * 100, pathShorter01);
+        std::printf("%s", exactText);
         if (offSurface) std::printf("first surface problem: %s\n", firstProblem.c_str());
     }
     return offSurface == 0 ? 0 : 1;
@@ -159,7 +211,7 @@ int randomPaths(const cli::Args& args, const Mesh& mesh, const RuntimeGraph& gra
 
 int runPath(int argc, char** argv) {
     cli::Args args(argc, argv, {"--from", "--to", "--png", "--size", "--view", "--random", "--seed"},
-                   {"--json", "--help", "--repair"});
+                   {"--json", "--help", "--repair", "--exact"});
     if (args.flag("--help")) {
         std::printf("%s", kUsage);
         return 0;

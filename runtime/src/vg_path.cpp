@@ -9,6 +9,7 @@
 // then traced on the surface down the stored distance field of its far end
 // (vg_path_trace.h), so the polyline's length is the sum the search added up.
 #include "vg_fan.h"
+#include "vg_path_taut.h"
 #include "vg_path_trace.h"
 #include "vg_point_to_point.h"
 #include "vg_query.h"
@@ -301,14 +302,53 @@ extern "C" vg_status vg_path(const vg_graph* graph, vg_workspace* workspace, con
     vg::Endpoint s, t;
     if (vg::resolvePoint(*graph, *source, s) != VG_OK || vg::resolvePoint(*graph, *target, t) != VG_OK)
         return VG_ERR_INVALID_POINT;
+    // Traced into the workspace, pulled taut (vg_path_taut.h), copied to the caller's
+    // buffer; a path too long for the workspace is traced again straight into the
+    // caller's buffer and returned as traced.
     vg::Meeting meeting;
     const float d = vg::pointToPoint(*graph, *workspace, s, t, __builtin_inff(), &meeting);
     *out_distance = d;
     if (meeting.kind == vg::Meeting::kUnreached) return VG_OK;
+    const size_t rawCapacity = size_t(vg::maxRawPathPoints(graph->faceCount));
+    vg::PathWriter raw{workspace->pathRaw, rawCapacity, 0};
+    if (!PathBuilder(*graph, *workspace, meeting, raw).build()) return VG_ERR_PATH_FAILED;
     vg::PathWriter writer{out_points, capacity, 0};
-    PathBuilder builder(*graph, *workspace, meeting, writer);
-    if (!builder.build()) return VG_ERR_PATH_FAILED;
-    if (meeting.swapped) writer.reverse(0);
+    double length = 0.0;
+    if (raw.stored()) {
+        // Each pass lays the corridor along the previous pass's path: where that bends
+        // round a vertex, the side of the smaller angle (a first pass has only the traced
+        // path's directions to go by).
+        vg::PathWriter passes[2] = {raw, vg::PathWriter{workspace->pathTaut, rawCapacity, 0}};
+        uint32_t cur = 0;
+        length = vg::polylineLength(raw.out, raw.count);
+        for (uint32_t pass = 0; pass < vg::kTautPasses; ++pass) {
+            vg::PathWriter& next = passes[1 - cur];
+            next.count = 0;
+            double l = 0.0;
+            if (!vg::pullTaut(*graph, *workspace, passes[cur].out, passes[cur].count, next, l) || !next.stored() ||
+                !(l < length))
+                break;
+            const bool enough = l > length * (1.0 - vg::kTautGain);
+            length = l;
+            cur = 1 - cur;
+            if (enough) break;
+        }
+        // Pulled taut in the search's own direction, so that both directions of a query
+        // give the same polyline.
+        const size_t n = passes[cur].count;
+        for (size_t i = 0; i < n; ++i) {
+            const vg_path_point& p = passes[cur].out[meeting.swapped ? n - 1 - i : i];
+            writer.put(p.point.face, p.point.bary, p.position);
+        }
+    } else {
+        vg::Meeting again;
+        vg::pointToPoint(*graph, *workspace, s, t, __builtin_inff(), &again);
+        if (!PathBuilder(*graph, *workspace, again, writer).build()) return VG_ERR_PATH_FAILED;
+        if (again.swapped) writer.reverse(0);
+        length = __builtin_inff();  // not measured: the distance stays the search's
+    }
+    // A path on the surface is a bound on the geodesic distance: report the better one.
+    if (length < double(d)) *out_distance = float(length);
     *out_count = writer.count;
     return writer.count > capacity && out_points != nullptr ? VG_ERR_BUFFER_TOO_SMALL : VG_OK;
 }

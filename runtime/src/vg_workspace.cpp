@@ -2,6 +2,8 @@
 // memory, assigns the arrays, so the two can never disagree.
 #include "vg_workspace.h"
 
+#include "vg_path_taut.h"
+
 #include <string.h>
 
 namespace {
@@ -54,6 +56,10 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.pathNodes = L.take<uint32_t>(N + 1);
     o.pathLegs = L.take<vg::PathLeg>(vg::maxPathLegs(N));
     o.pathSteps = L.take<vg::PathLeg>(vg::maxPathLegs(N));
+    o.pathRaw = L.take<vg_path_point>(vg::maxRawPathPoints(g.faceCount));
+    o.pathTaut = L.take<vg_path_point>(vg::maxRawPathPoints(g.faceCount));
+    o.pathPortals = L.take<vg::Portal>(vg::maxPortals(g.faceCount));
+    o.pathApexes = L.take<vg::Apex>(vg::maxPortals(g.faceCount) + 2);
     o.graph = &g;
     o.generation = 0;
     o.slice = vg::FieldSlice{0, 0, 0, nullptr, nullptr, 0, nullptr, nullptr};

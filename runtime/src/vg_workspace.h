@@ -10,6 +10,9 @@ namespace vg {
 
 constexpr uint32_t kFirstLayerBit = 0x80000000u;
 
+struct Portal;  // vg_path_taut.h
+struct Apex;
+
 constexpr uint32_t kMaxPatchEdges = 4096;
 constexpr uint32_t kTargetChunk = 2048;    // surface-point targets resolved at once (k-nearest)  // border edges unfolded per patch (more are skipped)
 
@@ -160,6 +163,10 @@ struct vg_workspace {
     uint32_t* pathNodes;           // N + 1: a node chain being read off (vg_path)
     vg::PathLeg* pathLegs;         // kMaxPathLegs(N): the route's legs, then ...
     vg::PathLeg* pathSteps;        // ... with first-layer legs expanded into second-layer ones
+    vg_path_point* pathRaw;        // maxRawPathPoints(F): the traced path, before it is pulled taut,
+    vg_path_point* pathTaut;       // and as many for the passes that pull it taut
+    vg::Portal* pathPortals;       // maxPortals(F): the corridor of faces it runs through
+    vg::Apex* pathApexes;          // maxPortals(F) + 2: the taut path's corners
     vg::FieldSlice slice;          // the time-sliced one-to-all query, if one was started
 };
 

@@ -325,10 +325,11 @@ extern "C" vg_status vg_path(const vg_graph* graph, vg_workspace* workspace, con
             vg::PathWriter& next = passes[1 - cur];
             next.count = 0;
             double l = 0.0;
-            if (!vg::pullTaut(*graph, *workspace, passes[cur].out, passes[cur].count, next, l) || !next.stored() ||
-                !(l < length))
+            bool bendable = false;
+            if (!vg::pullTaut(*graph, *workspace, passes[cur].out, passes[cur].count, next, l, bendable) ||
+                !next.stored() || !(l < length))
                 break;
-            const bool enough = l > length * (1.0 - vg::kTautGain);
+            const bool enough = !bendable || (pass > 0 && l > length * (1.0 - vg::kTautGain));
             length = l;
             cur = 1 - cur;
             if (enough) break;

@@ -11,6 +11,7 @@ struct Spot {
 };
 
 constexpr float kZeroWeight = 1e-6f;
+constexpr double kWorthAnotherPass = 0.02;  // radians
 
 Spot locate(const vg_graph& g, const vg_path_point& p) {
     uint32_t zero = 3, zeros = 0;
@@ -228,7 +229,7 @@ bool buildCorridor(const vg_graph& g, const vg_path_point* raw, size_t count, Co
 }  // namespace
 
 bool pullTaut(const vg_graph& g, vg_workspace& ws, const vg_path_point* raw, size_t count, PathWriter& out,
-              double& length) {
+              double& length, bool& bendable) {
     if (count < 2) return false;
     const uint64_t capacity = maxPortals(g.faceCount);
     Corridor corridor(g, ws, capacity);
@@ -275,6 +276,30 @@ bool pullTaut(const vg_graph& g, vg_workspace& ws, const vg_path_point* raw, siz
         }
     }
     A[apexes++] = Apex{{end[0], end[1]}, uint32_t(m + 1), kNone};
+
+    // Another pass can only help where the path bends round a vertex whose other side
+    // is shorter: there the angle left over, total minus the corridor's side (pi plus
+    // the bend), is below pi. On a flat or convex vertex any bend qualifies; a pass is
+    // worth it where the shortfall is more than kWorthAnotherPass (the length it saves
+    // grows with the square of the shortfall).
+    bendable = false;
+    for (uint64_t s = 1; s + 1 < apexes && !bendable; ++s) {
+        const double ux = A[s].at[0] - A[s - 1].at[0], uy = A[s].at[1] - A[s - 1].at[1];
+        const double wx = A[s + 1].at[0] - A[s].at[0], wy = A[s + 1].at[1] - A[s].at[1];
+        const double cr = ux * wy - uy * wx;
+        const double bend = __builtin_atan2(cr < 0.0 ? -cr : cr, ux * wx + uy * wy);
+        bool closed = true;
+        double total = 0.0;
+        const uint32_t v = A[s].vertex;
+        const Vec pv = vertexAt(g, v);
+        forEachFaceAround(g, v, [&](uint32_t f, uint32_t k) {
+            const uint32_t* c = g.faceVertices + 3 * uint64_t(f);
+            total += angleBetween(minus(vertexAt(g, c[(k + 1) % 3]), pv), minus(vertexAt(g, c[(k + 2) % 3]), pv));
+            if (g.faceTwin[3 * f + k] == kNone) closed = false;  // the fan ends at a boundary
+        });
+        constexpr double kPi = 3.14159265358979323846;
+        if (closed && total - (kPi + bend) < kPi - kWorthAnotherPass) bendable = true;
+    }
 
     // Emit: the start, then per straight stretch its portal crossings and its far corner.
     length = 0.0;

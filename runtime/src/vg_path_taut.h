@@ -30,10 +30,12 @@ struct Apex {
 inline uint64_t maxRawPathPoints(uint64_t faceCount) { return faceCount * 2 + 64 < 16384 ? faceCount * 2 + 64 : 16384; }
 inline uint64_t maxPortals(uint64_t faceCount) { return faceCount * 4 + 64 < 32768 ? faceCount * 4 + 64 : 32768; }
 
-// Passes of pullTaut at most (each starts from the last); they stop after a pass that
-// shortened the path by less than this fraction.
+// Passes of pullTaut at most (each starts from the last). They stop after a pass that
+// leaves no bend worth turning round (see pullTaut's `bendable`), or after a second or
+// later pass that shortened the path by less than kTautGain (the first one always gains
+// most: it removes the trace's kinks at the patch nodes).
 constexpr uint32_t kTautPasses = 4;
-constexpr double kTautGain = 5e-5;
+constexpr double kTautGain = 2e-4;
 
 // Length of a polyline of path points.
 inline double polylineLength(const vg_path_point* p, size_t count) {
@@ -43,9 +45,11 @@ inline double polylineLength(const vg_path_point* p, size_t count) {
 }
 
 // Writes the taut form of the `count` (>= 2) points of `raw` to `out` (first and last
-// point kept) and its length to `length`. False, with nothing written, when the corridor
-// cannot be built or does not fit the workspace: the caller then keeps the traced path.
+// point kept) and its length to `length`; `bendable`: it bends round a vertex whose other
+// side is shorter, so another pass can shorten it. False, with nothing written, when the
+// corridor cannot be built or does not fit the workspace: the caller then keeps the
+// traced path.
 bool pullTaut(const vg_graph& g, vg_workspace& ws, const vg_path_point* raw, size_t count, PathWriter& out,
-              double& length);
+              double& length, bool& bendable);
 
 }  // namespace vg

@@ -221,7 +221,8 @@ private:
             const float du = F.label[u].dist;
             for (uint32_t m = g_.nodeSecondBegin[u]; m < g_.nodeSecondBegin[u + 1]; ++m) {
                 const uint32_t patch = g_.nodeSecond[m].patch;
-                if (g_.second[patch].parent == first)
+                // Not the row of the patch that labelled u (as in relaxNode: it cannot do better).
+                if (g_.second[patch].parent == first && patch != F.route[u].via)
                     relaxSecondRow(g_, patch, g_.nodeSecond[m].slot, du, 0, u, F, key, none);
             }
         }

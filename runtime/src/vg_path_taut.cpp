@@ -11,7 +11,7 @@ struct Spot {
 };
 
 constexpr float kZeroWeight = 1e-6f;
-constexpr double kWorthAnotherPass = 0.02;  // radians
+constexpr double kWorthAnotherPass = 0.05;  // radians
 
 Spot locate(const vg_graph& g, const vg_path_point& p) {
     uint32_t zero = 3, zeros = 0;

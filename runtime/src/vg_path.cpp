@@ -7,7 +7,9 @@
 // first-layer patch (an overlay edge, the shortest node path through that patch's second
 // layer) is expanded again by a small A* over that second layer. Each second-layer leg is
 // then traced on the surface down the stored distance field of its far end
-// (vg_path_trace.h), so the polyline's length is the sum the search added up.
+// (vg_path_trace.h), so the traced polyline is about as long as the sum the search added
+// up; pulled taut through the faces it crosses (vg_path_taut.h), it comes close to the
+// geodesic.
 #include "vg_fan.h"
 #include "vg_path_taut.h"
 #include "vg_path_trace.h"

@@ -282,6 +282,26 @@ private:
 
     uint64_t stepsFor(uint32_t patch) const { return 4 * uint64_t(g_.second[patch].slotCount) + 64; }
 
+    // The field at vertex v, remembering the last few: consecutive faces share two corners,
+    // and each fresh lookup reads a row entry that is rarely in cache.
+    static constexpr uint32_t kRecent = 4;
+    uint32_t recentVertex_[kRecent] = {kNone, kNone, kNone, kNone};
+    float recentValue_[kRecent] = {};
+    uint32_t recentPatch_ = kNone, recentNext_ = 0;
+    float fieldAt(uint32_t v) {
+        if (recentPatch_ != f_.patch) {
+            for (uint32_t i = 0; i < kRecent; ++i) recentVertex_[i] = kNone;
+            recentPatch_ = f_.patch;
+        }
+        for (uint32_t i = 0; i < kRecent; ++i)
+            if (recentVertex_[i] == v) return recentValue_[i];
+        const float d = f_.at(v);
+        recentVertex_[recentNext_] = v;
+        recentValue_[recentNext_] = d;
+        recentNext_ = (recentNext_ + 1) % kRecent;
+        return d;
+    }
+
     bool finishAt() {
         if (f_.point) w_.endpoint(g_, *f_.point);  // straight across the point's face
         return true;
@@ -327,7 +347,7 @@ private:
         bool ok = faceFrame(g_, face, fr);
         if (!straight_) {
             for (int k = 0; k < 3; ++k) {
-                D[k] = f_.at(c[k]);
+                D[k] = fieldAt(c[k]);
                 ok = ok && D[k] != __builtin_inff();
             }
             ok = ok && virtualSource(fr, D, s);

@@ -26,14 +26,9 @@ Spot locate(const vg_graph& g, const vg_path_point& p) {
     return Spot{Spot::kFace, p.point.face};
 }
 
-uint32_t cornerIn(const vg_graph& g, uint32_t face, uint32_t v) {
-    const uint32_t* c = g.faceVertices + 3 * uint64_t(face);
-    return c[0] == v ? 0 : (c[1] == v ? 1 : (c[2] == v ? 2 : 3));
-}
-
 bool faceHolds(const vg_graph& g, uint32_t face, const Spot& s) {
     switch (s.kind) {
-    case Spot::kVertex: return cornerIn(g, face, s.id) != 3;
+    case Spot::kVertex: return cornerOf(g, face, s.id) != 3;
     case Spot::kEdge: return face == s.id / 3 || (g.faceTwin[s.id] != kNone && face == g.faceTwin[s.id] / 3);
     case Spot::kFace: return face == s.id;
     }
@@ -122,22 +117,13 @@ public:
         return true;
     }
 
-    // Crosses into the neighbouring face `to` (sharing an edge with the current face).
-    bool crossInto(uint32_t to) {
-        for (uint32_t k = 0; k < 3; ++k) {
-            const uint32_t t = g_.faceTwin[3 * face_ + k];
-            if (t != kNone && t / 3 == to) return cross(3 * face_ + k);
-        }
-        return false;
-    }
-
     // A raw point in the current face's plane (every vertex it is weighted on is a corner).
     bool planar(const vg_path_point& p, double* out) const {
         out[0] = out[1] = 0.0;
         for (uint32_t k = 0; k < 3; ++k) {
             const float w = p.point.bary[k];
             if (w <= kZeroWeight) continue;
-            const uint32_t c = cornerIn(g_, face_, g_.faceVertices[3 * uint64_t(p.point.face) + k]);
+            const uint32_t c = cornerOf(g_, face_, g_.faceVertices[3 * uint64_t(p.point.face) + k]);
             if (c == 3) return false;
             out[0] += double(w) * corner_[c][0];
             out[1] += double(w) * corner_[c][1];
@@ -168,7 +154,7 @@ FanWalk walkFan(const vg_graph& g, uint32_t v, uint32_t from, uint32_t dir, cons
     uint32_t f = from;
     double angle = 0.0;
     for (uint32_t step = 0; step < 4096; ++step) {
-        const uint32_t k = cornerIn(g, f, v);
+        const uint32_t k = cornerOf(g, f, v);
         if (k == 3) break;
         const uint32_t* c = g.faceVertices + 3 * uint64_t(f);
         const Vec exitSpoke = minus(vertexAt(g, c[dir == 0 ? (k + 1) % 3 : (k + 2) % 3]), pv);
@@ -215,7 +201,7 @@ bool buildCorridor(const vg_graph& g, const vg_path_point* raw, size_t count, Co
             const uint32_t dir = w0.ok && (!w1.ok || w0.angle <= w1.angle) ? 0 : 1;
             const uint32_t steps = dir == 0 ? w0.faces : w1.faces;
             for (uint32_t s = 0; s < steps; ++s) {
-                const uint32_t k = cornerIn(g, c.face(), here.id);
+                const uint32_t k = cornerOf(g, c.face(), here.id);
                 if (!c.cross(3 * c.face() + (dir == 0 ? k : (k + 2) % 3))) return false;
             }
         } else {

@@ -11,6 +11,7 @@
 // up; pulled taut through the faces it crosses (vg_path_taut.h), it comes close to the
 // geodesic.
 #include "vg_fan.h"
+#include "vg_lower_bound.h"
 #include "vg_path_taut.h"
 #include "vg_path_trace.h"
 #include "vg_point_to_point.h"
@@ -24,6 +25,10 @@ using namespace vg;
 // Leg ends that are not nodes.
 constexpr uint32_t kAtSource = 0xFFFFFFFEu, kAtTarget = 0xFFFFFFFDu;
 constexpr uint32_t kAtCrossingForward = 0xFFFFFFFCu, kAtCrossingBackward = 0xFFFFFFFBu;
+
+// How far past its overlay entry the expand of an overlay leg looks: the second-layer
+// entries along the way are rounded too (half a step each), a few times finer.
+constexpr float kExpandSlack = 2e-3f;
 
 class PathBuilder {
 public:
@@ -207,16 +212,50 @@ private:
         return true;
     }
 
+    // The distance an overlay leg stands for: its entry in the first-layer matrix (+inf if
+    // either end is not a node of that patch).
+    float overlayDistance(uint32_t first, uint32_t from, uint32_t to) const {
+        uint32_t slotFrom = kNone, slotTo = kNone;
+        for (uint32_t m = g_.nodeFirstBegin[from]; m < g_.nodeFirstBegin[from + 1]; ++m)
+            if (g_.nodeFirst[m].patch == first) slotFrom = g_.nodeFirst[m].slot;
+        for (uint32_t m = g_.nodeFirstBegin[to]; m < g_.nodeFirstBegin[to + 1]; ++m)
+            if (g_.nodeFirst[m].patch == first) slotTo = g_.nodeFirst[m].slot;
+        if (slotFrom == kNone || slotTo == kNone) return __builtin_inff();
+        const Patch& p = g_.first[first];
+        const uint32_t q = quantum(g_.firstDistances, p.matrixBegin + uint64_t(slotFrom) * p.slotCount + slotTo);
+        return q == kNoPathQuantum ? __builtin_inff() : float(q) * p.scale + 0.5f * p.scale;
+    }
+
     // The second-layer node path of an overlay leg: A* from its start over the second-layer
-    // patches of its first-layer patch, straight-line heuristic, stopped at its end.
+    // patches of its first-layer patch, stopped at its end. The overlay entry says how long
+    // that path is, so nodes whose lower bound (straight line, then landmarks) exceeds it
+    // are never queued; should rounding leave the end unreached, it runs again unbounded.
     bool expand(const PathLeg& L, uint64_t& steps) {
+        const uint32_t first = L.via & ~kFirstLayerBit;
+        const float overlay = overlayDistance(first, L.from, L.to);
+        if (!expandWithin(L, overlay * (1.0f + kExpandSlack), steps) &&
+            !(overlay != __builtin_inff() && expandWithin(L, __builtin_inff(), steps)))
+            return false;
+        return true;
+    }
+
+    bool expandWithin(const PathLeg& L, float bound, uint64_t& steps) {
         const uint32_t first = L.via & ~kFirstLayerBit, goal = L.to;
         beginQuery(ws_);
         Frontier& F = ws_.forward;
-        const uint32_t goalVertex = g_.nodeVertex[goal];
-        auto key = [&](uint32_t n, float dn) { return dn + euclidean(g_, g_.nodeVertex[n], goalVertex); };
+        const uint32_t stride = 3 + g_.landmarkCount;
+        const float* goalRecord = ws_.nodeRecords + uint64_t(goal) * stride;
+        auto key = [&](uint32_t n, float dn) {
+            const float* r = ws_.nodeRecords + uint64_t(n) * stride;
+            const float dx = r[0] - goalRecord[0], dy = r[1] - goalRecord[1], dz = r[2] - goalRecord[2];
+            if (dn + __builtin_sqrtf(dx * dx + dy * dy + dz * dz) > bound) return __builtin_inff();
+            const float k = dn + nodeBound(g_, r, goalRecord, goalRecord + 3);
+            return k > bound ? __builtin_inff() : k;
+        };
         auto none = [](uint32_t, float) {};
-        F.improve(L.from, 0.0f, key(L.from, 0.0f), kNone, 0, kNone);
+        const float startKey = key(L.from, 0.0f);
+        if (startKey == __builtin_inff()) return false;
+        F.improve(L.from, 0.0f, startKey, kNone, 0, kNone);
         while (!F.empty()) {
             const uint32_t u = F.pop().node;
             if (u == goal) break;

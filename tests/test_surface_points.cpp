@@ -263,8 +263,9 @@ float pathBetween(const RuntimeGraph& g, const RuntimeWorkspace& ws, const vg_po
     return d;
 }
 
-// Relative differences of path length and distance over random point pairs, with every
-// path checked to lie on the surface and to join its two points.
+// Relative differences of path length and vg_point_distance over random point pairs,
+// with every path checked to lie on the surface, to join its two points and to come with
+// its own length as the distance.
 std::vector<double> pathLengthDifferences(const Baked& b, size_t pairs, uint64_t seed) {
     RuntimeWorkspace ws(b.graph);
     const tools::PathChecker checker(b.mesh);
@@ -276,10 +277,7 @@ std::vector<double> pathLengthDifferences(const Baked& b, size_t pairs, uint64_t
         const float d = pathBetween(b.graph, ws, s, t, path);
         const float searched = pointDistance(b.graph, ws, s, t);
         const tools::PathCheck c = checker.check(path);
-        // The path's distance is the search's, or the path's length where that is shorter.
-        CHECK(d <= searched);
-        if (c.length < searched * (1 - 1e-6)) CHECK(d == Approx(c.length).epsilon(1e-5));
-        else CHECK(d == searched);
+        CHECK(d == Approx(c.length).epsilon(1e-6));
         INFO("pair " << i << ": " << c.problem);
         CHECK(c.ok);
         REQUIRE(path.size() >= 2);
@@ -290,7 +288,7 @@ std::vector<double> pathLengthDifferences(const Baked& b, size_t pairs, uint64_t
             CHECK(path.front().position[k] == Approx(ps[k]).margin(1e-6));
             CHECK(path.back().position[k] == Approx(pt[k]).margin(1e-6));
         }
-        diffs.push_back(std::fabs(c.length - d) / d);
+        diffs.push_back(std::fabs(c.length - searched) / searched);
     }
     std::sort(diffs.begin(), diffs.end());
     return diffs;
@@ -298,16 +296,15 @@ std::vector<double> pathLengthDifferences(const Baked& b, size_t pairs, uint64_t
 
 }  // namespace
 
-TEST_CASE("paths: on the surface, joining the points, as long as the distance", "[points][paths]") {
-    // Where the path is longer than its distance, the distance is below the geodesic (no
-    // path can be that short): coarse meshes (1,800 and 1,600 vertices, a few dozen per
-    // patch) have more such pairs than real ones (igea: 1 of 2,000, BENCHMARKS.md).
+TEST_CASE("paths: on the surface, joining the points, as long as vg_point_distance", "[points][paths]") {
+    // Both estimate the geodesic; they part most on coarse meshes (1,800 and 1,600
+    // vertices, a few dozen per patch), where the search's distance is least exact.
     for (const char* name : {"bumpy", "plane"}) {
         const std::vector<double> diffs = pathLengthDifferences(baked(name), 300, 41);
         const double median = diffs[diffs.size() / 2], p90 = diffs[diffs.size() * 9 / 10];
-        INFO(name << ": length vs distance median " << median << ", p90 " << p90 << ", max " << diffs.back());
-        CHECK(median < 1e-5);
-        CHECK(p90 < 5e-3);
+        INFO(name << ": length vs vg_point_distance median " << median << ", p90 " << p90 << ", max " << diffs.back());
+        CHECK(median < 3e-3);  // measured 0.13% (bumpy), 0.03% (plane)
+        CHECK(p90 < 1e-2);
         CHECK(diffs.back() < 0.05);
     }
 }
@@ -326,9 +323,9 @@ TEST_CASE("paths: pulled taut, within a hair of the exact geodesic", "[points][p
         worst = std::max(worst, excess);
         shortest = std::min(shortest, excess);
         // A path on the surface is never shorter than the geodesic (float rounding aside),
-        // and neither is the distance it reports.
+        // and the distance it reports is its length.
         CHECK(excess > -1e-5);
-        CHECK(d <= pointDistance(b.graph, ws, s, t));
+        CHECK(d == Approx(tools::polylineLength(path)).epsilon(1e-6));
     }
     const double mean = sum / double(pairs.size());
     INFO("path length over the exact distance: mean " << mean << ", max " << worst << ", min " << shortest);

@@ -193,14 +193,14 @@ TEST_CASE("vorogeo path prints, checks and draws a path; --random gives its stat
     REQUIRE(r.status == 0);
     for (const char* key : {"mean_length_rel_diff", "max_length_rel_diff", "path_p50_us", "distance_p50_us",
                             "distance_p90_us", "extraction_p50_us", "extraction_p90_us", "off_surface\":0",
-                            "shorter_than_point_distance_mean"})
+                            "vs_point_distance_mean", "vs_point_distance_max"})
         CHECK_THAT(r.out, Catch::Contains(key));
     CHECK_THAT(r.out, !Catch::Contains("path_vs_exact_mean"));
     r = test::runTool("path " + mesh + " " + blob + " --random 20 --exact --json");
     INFO(r.out << r.err);
     REQUIRE(r.status == 0);
-    for (const char* key : {"path_vs_exact_mean", "path_vs_exact_max", "path_vs_exact_min", "distance_vs_exact_mean",
-                            "over_0_1pct_distance_undercut"})
+    for (const char* key : {"path_vs_exact_mean", "path_vs_exact_max", "path_vs_exact_min", "point_distance_vs_exact_mean",
+                            "point_distance_vs_exact_max"})
         CHECK_THAT(r.out, Catch::Contains(key));
 
     // Bad input names the problem.

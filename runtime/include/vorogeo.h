@@ -248,13 +248,12 @@ typedef struct vg_path_point {
  * borders, traced face by face down the stored distances, and is then pulled taut: the
  * faces it crosses are unfolded into the plane and the shortest way through them replaces
  * the trace (a few passes; where it bends round a vertex, the next pass tries the other
- * side). *out_distance is vg_point_distance's answer, or the path's length where that is
- * shorter (a path on the surface bounds the geodesic distance from above): so the length
- * matches the distance except where the search's distance is itself below the geodesic
- * one. BENCHMARKS.md has the measured spread and the path's length against exact
- * geodesics (igea: 0.009% longer on average). A path of more points than the workspace
- * holds (vg_workspace_size reserves 2 per face, at most 16,384) comes back as
- * traced, not pulled taut.
+ * side). *out_distance is the length of the returned polyline, which can differ a little
+ * from vg_point_distance's answer for the same points (BENCHMARKS.md has the spread, and
+ * both against exact geodesics: on igea the path is 0.016% longer than the geodesic on
+ * average, the search's distance 0.065% off). A path of more points than the workspace
+ * holds (vg_workspace_size reserves 2 per face, at most 16,384) comes back as traced, not
+ * pulled taut, with vg_point_distance's answer.
  *
  * Size query first: with out_points NULL and capacity 0 the call returns VG_OK and sets
  * *out_count to the number of points needed. With a buffer of `capacity` points it writes

@@ -388,10 +388,11 @@ extern "C" vg_status vg_path(const vg_graph* graph, vg_workspace* workspace, con
         vg::pointToPoint(*graph, *workspace, s, t, __builtin_inff(), &again);
         if (!PathBuilder(*graph, *workspace, again, writer).build()) return VG_ERR_PATH_FAILED;
         if (again.swapped) writer.reverse(0);
-        length = __builtin_inff();  // not measured: the distance stays the search's
+        length = __builtin_inff();  // not measured (maybe not even stored): the distance stays the search's
     }
-    // A path on the surface is a bound on the geodesic distance: report the better one.
-    if (length < double(d)) *out_distance = float(length);
+    // The distance that comes with a path is the length of that path (it is what a caller
+    // will walk, and closer to the geodesic than the search's estimate on average).
+    if (length != __builtin_inff()) *out_distance = float(length);
     *out_count = writer.count;
     return writer.count > capacity && out_points != nullptr ? VG_ERR_BUFFER_TOO_SMALL : VG_OK;
 }

@@ -43,17 +43,24 @@ inline void lowerRow(const uint8_t* packed, uint64_t k0, uint32_t n, float base,
 
 // The path to an interior vertex may cross the border on an edge next to its best node
 // rather than at the node. The source side of each such edge (its unfolded source point)
-// is the same for every vertex of the patch, so it is computed once per edge here.
-// (Crossing edges join nodes of the best node's source, so the nearest source stays.)
+// is the same for every vertex of the patch, so it is computed once per edge here, for
+// the nodes that are some vertex's best. (Crossing edges join nodes of the best node's
+// source, so the nearest source stays.)
 void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_workspace& ws,
                        uint32_t reached) {
     const Patch& p = g.second[patchIndex];
     const uint32_t* slots = g.slots + p.slotBegin;
+    const uint32_t interior = p.slotCount - p.nodeCount;
     CrossingEdge* edges = ws.patchEdges;
     uint32_t* begin = ws.patchEdgeBegin;
+    for (uint32_t r = 0; r < reached; ++r) begin[r] = 0;  // first as a flag: "is some vertex's best"
+    for (uint32_t j = 0; j < interior; ++j)
+        if (ws.patchBestNode[j] != kNone) begin[ws.patchBestNode[j]] = 1;
     uint32_t count = 0;
     for (uint32_t r = 0; r < reached; ++r) {
+        const bool used = begin[r] != 0;
         begin[r] = count;
+        if (!used) continue;
         const uint32_t u = slots[ws.patchNodeSlot[r]];
         const float a = ws.patchNodeDistance[r];
         for (uint32_t e = g.nodeEdgeBegin[u]; e < g.nodeEdgeBegin[u + 1] && count < kMaxPatchEdges; ++e) {
@@ -71,7 +78,6 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, const Frontier& f
         }
     }
     begin[reached] = count;
-    const uint32_t interior = p.slotCount - p.nodeCount;
     for (uint32_t j = 0; j < interior; ++j) {
         const uint32_t r = ws.patchBestNode[j];
         if (r == kNone || begin[r] == begin[r + 1]) continue;

@@ -233,12 +233,12 @@ private:
     bool expand(const PathLeg& L, uint64_t& steps) {
         const uint32_t first = L.via & ~kFirstLayerBit;
         const float overlay = overlayDistance(first, L.from, L.to);
-        if (!expandWithin(L, overlay * (1.0f + kExpandSlack), steps) &&
-            !(overlay != __builtin_inff() && expandWithin(L, __builtin_inff(), steps)))
-            return false;
-        return true;
+        return expandWithin(L, overlay * (1.0f + kExpandSlack), steps) ||
+               (overlay != __builtin_inff() && expandWithin(L, __builtin_inff(), steps));
     }
 
+    // The A* of expand, queueing only nodes whose key stays within `bound`; appends the
+    // chain's legs to pathSteps, or leaves them as they were and returns false.
     bool expandWithin(const PathLeg& L, float bound, uint64_t& steps) {
         const uint32_t first = L.via & ~kFirstLayerBit, goal = L.to;
         beginQuery(ws_);
@@ -273,10 +273,10 @@ private:
             if (count > g_.nodeCount || F.route[c].parent == kNone) return false;
             ws_.pathNodes[count++] = c;
         }
+        if (steps + count > maxLegs_) return false;
         uint32_t prev = L.from;
         for (uint32_t i = count; i > 0; --i) {
             const uint32_t n = ws_.pathNodes[i - 1];
-            if (steps >= maxLegs_) return false;
             ws_.pathSteps[steps++] = PathLeg{prev, n, F.route[n].via};
             prev = n;
         }

@@ -41,23 +41,6 @@ inline void lowerRow(const uint8_t* packed, uint64_t k0, uint32_t n, float base,
     }
 }
 
-// False when the crossing of edge E towards a vertex at distances c, e from its ends
-// surely is no shorter than `best`: the squared length of the unfolded segment, compared
-// without its square roots and divisions (most crossings fail this). A 1e-4 margin leaves
-// every close call to the exact computation, so the results are the same bits.
-inline bool mayCrossShorter(const CrossingEdge& E, float c, float e, float best) {
-    const float x = (c * c - e * e + E.length * E.length) * E.halfInverseLength;
-    float y2 = c * c - x * x;
-    y2 = y2 > 0.0f ? y2 : 0.0f;
-    const float dx = x - E.source.x, sy = E.source.y;
-    // |segment|^2 = dx^2 + (y + sy)^2 = base + 2 sy y, with y = sqrt(y2)
-    const float base = dx * dx + y2 + sy * sy;
-    const float limit = best * 1.0001f;
-    const float room = limit * limit - base;  // +inf, or nan, for best = +inf: not rejected
-    if (room <= 0.0f) return false;
-    return !(4.0f * sy * sy * y2 >= room * room);
-}
-
 // The path to an interior vertex may cross the border on an edge next to its best node
 // rather than at the node. The source side of each such edge (its unfolded source point)
 // is the same for every vertex of the patch, so it is computed once per edge here, for
@@ -90,7 +73,7 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, const Frontier& f
                 const float b = f.label[w].dist, l = euclidean(g, g.nodeVertex[u], g.nodeVertex[w]);
                 UnfoldedPoint source;
                 if (unfoldPoint(a, b, l, source))
-                    edges[count++] = CrossingEdge{rowStart(p, slot) - (slot + 1) + p.nodeCount, l, b, source, 0.5f / l};
+                    edges[count++] = CrossingEdge{rowStart(p, slot) - (slot + 1) + p.nodeCount, l, b, source};
             }
         }
     }
@@ -106,7 +89,6 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, const Frontier& f
             const uint32_t q = quantum(g.secondDistances, E.row + j);
             if (q == kNoPathQuantum) continue;
             const float e = float(q) * p.scale;
-            if (!mayCrossShorter(E, c, e, o)) continue;
             UnfoldedPoint target;
             if (!unfoldPoint(c, e, E.length, target)) continue;
             const float d = crossingLength(E.source, target, E.length, a + c, E.b + e);

@@ -23,7 +23,6 @@ struct CrossingEdge {
     uint64_t row;  // packed index of the neighbour's entry for the patch's first interior slot
     float length, b;
     UnfoldedPoint source;
-    float halfInverseLength;  // 0.5 / length, for the cheap rejection test
 };
 
 struct Potential {

@@ -70,11 +70,17 @@ inline float landmarkBound(const vg_graph& g, const float* la, const float* lb) 
     return best;
 }
 
-// A lower bound of d(node, x) from the node's record (position, then its landmark
-// distances, see vg_workspace.cpp) and x's position and landmark distances.
-inline float nodeBound(const vg_graph& g, const float* record, const float* xPosition, const float* xLandmarks) {
+// The straight-line distance between a node's record (position, then its landmark
+// distances, see vg_workspace.cpp) and position x.
+inline float recordDistance(const float* record, const float* xPosition) {
     const float dx = record[0] - xPosition[0], dy = record[1] - xPosition[1], dz = record[2] - xPosition[2];
-    float best = __builtin_sqrtf(dx * dx + dy * dy + dz * dz);
+    return __builtin_sqrtf(dx * dx + dy * dy + dz * dz);
+}
+
+// The best of `straight` (a lower bound of d(node, x)) and the landmark bounds from the
+// node's record and x's landmark distances.
+inline float withLandmarks(const vg_graph& g, const float* record, const float* xLandmarks, float straight) {
+    float best = straight;
     for (uint32_t k = 0; k < g.landmarkCount; ++k) {
         // +inf on either side (no landmark path) gives inf - inf or an infinite
         // difference; neither passes the comparison below as a finite bound.
@@ -82,6 +88,11 @@ inline float nodeBound(const vg_graph& g, const float* record, const float* xPos
         if (d > best && d != __builtin_inff()) best = d;
     }
     return best;
+}
+
+// A lower bound of d(node, x) from the node's record and x's position and landmark distances.
+inline float nodeBound(const vg_graph& g, const float* record, const float* xPosition, const float* xLandmarks) {
+    return withLandmarks(g, record, xLandmarks, recordDistance(record, xPosition));
 }
 
 }  // namespace vg

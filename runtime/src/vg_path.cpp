@@ -247,9 +247,9 @@ private:
         const float* goalRecord = ws_.nodeRecords + uint64_t(goal) * stride;
         auto key = [&](uint32_t n, float dn) {
             const float* r = ws_.nodeRecords + uint64_t(n) * stride;
-            const float dx = r[0] - goalRecord[0], dy = r[1] - goalRecord[1], dz = r[2] - goalRecord[2];
-            if (dn + __builtin_sqrtf(dx * dx + dy * dy + dz * dz) > bound) return __builtin_inff();
-            const float k = dn + nodeBound(g_, r, goalRecord, goalRecord + 3);
+            const float straight = recordDistance(r, goalRecord);
+            if (dn + straight > bound) return __builtin_inff();  // the cheap bound first
+            const float k = dn + withLandmarks(g_, r, goalRecord + 3, straight);
             return k > bound ? __builtin_inff() : k;
         };
         auto none = [](uint32_t, float) {};

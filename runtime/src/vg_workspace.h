@@ -13,8 +13,8 @@ constexpr uint32_t kFirstLayerBit = 0x80000000u;
 struct Portal;  // vg_path_taut.h
 struct Apex;
 
-constexpr uint32_t kMaxPatchEdges = 4096;
-constexpr uint32_t kTargetChunk = 2048;    // surface-point targets resolved at once (k-nearest)  // border edges unfolded per patch (more are skipped)
+constexpr uint32_t kMaxPatchEdges = 4096;  // border edges unfolded per patch (more are skipped)
+constexpr uint32_t kTargetChunk = 2048;    // surface-point targets resolved at once (k-nearest)
 
 // A border edge of the patch being filled, from a reached node to a neighbour node: the
 // neighbour's slot, the edge length, the neighbour's distance and the unfolded source

@@ -147,10 +147,6 @@ int randomPaths(const cli::Args& args, const Mesh& mesh, const RuntimeGraph& gra
         distanceUs.push_back(distanceTime);
         extraUs.push_back(pathTime - distanceTime);
     }
-    double mean = 0;
-    for (double x : diffs) mean += x;
-    mean = diffs.empty() ? 0 : mean / double(diffs.size());
-    const double maxDiff = diffs.empty() ? 0 : *std::max_element(diffs.begin(), diffs.end());
     const auto meanOf = [](const std::vector<double>& v) {
         double sum = 0;
         for (double x : v) sum += x;
@@ -158,6 +154,7 @@ int randomPaths(const cli::Args& args, const Mesh& mesh, const RuntimeGraph& gra
     };
     const auto maxOf = [](const std::vector<double>& v) { return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()); };
     const auto minOf = [](const std::vector<double>& v) { return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end()); };
+    const double mean = meanOf(diffs), maxDiff = maxOf(diffs);
     char exactJson[512] = "", exactText[512] = "";
     if (withExact) {
         std::snprintf(exactJson, sizeof exactJson,

@@ -131,9 +131,13 @@ MeshStats computeStats(const Mesh& mesh) {
     for (uint32_t v = 0; v < mesh.vertexCount(); ++v) {
         if (vertexComp[v] == kNoComponent || mesh.boundaryVertex[v]) continue;
         ++s.interiorVertices;
-        s.saddleVertices += angles[v] > twoPi + tolerance;
+        const bool saddle = angles[v] > twoPi + tolerance;
+        s.saddleVertices += saddle;
+        s.nearFlatSaddleVertices += saddle && angles[v] < twoPi * (1 + kNearFlatSaddleExcess);
     }
-    s.saddleRatio = s.interiorVertices ? double(s.saddleVertices) / double(s.interiorVertices) : 0;
+    const double interior = double(s.interiorVertices);
+    s.saddleRatio = s.interiorVertices ? double(s.saddleVertices) / interior : 0;
+    s.nearFlatSaddleRatio = s.interiorVertices ? double(s.nearFlatSaddleVertices) / interior : 0;
     return s;
 }
 

@@ -30,9 +30,16 @@ struct MeshStats {
     uint64_t interiorVertices = 0;  // used by faces and not on a boundary
     uint64_t saddleVertices = 0;    // interior vertices with angle sum > 2*pi (negative curvature)
     double saddleRatio = 0;         // saddleVertices / interiorVertices (0 if none)
+    // Saddles whose angle excess is below kNearFlatSaddleExcess of 2*pi: each casts a thin
+    // shadow that the exact engine must cover with windows of its own, so their share
+    // predicts its cost (armadillo-50k 11% of saddles, igea 83%: BENCHMARKS.md).
+    uint64_t nearFlatSaddleVertices = 0;
+    double nearFlatSaddleRatio = 0;  // nearFlatSaddleVertices / interiorVertices (0 if none)
     double area = 0;
     std::vector<ComponentStats> componentList;
 };
+
+constexpr double kNearFlatSaddleExcess = 1e-3;
 
 // Requires built connectivity (throws std::invalid_argument otherwise).
 MeshStats computeStats(const Mesh& mesh);

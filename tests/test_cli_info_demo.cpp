@@ -21,7 +21,7 @@ TEST_CASE("vorogeo info --json prints one object with every key", "[cli]") {
     CHECK(r.out.find('\n') == r.out.size() - 1);
     for (const char* key : {"vertices", "faces", "edges", "boundary_edges", "boundary_loops", "components", "genus",
                             "euler", "bbox_min", "bbox_max", "bbox_diag", "edge_len_min", "edge_len_mean",
-                            "edge_len_max", "saddle_ratio", "area", "isolated_vertices", "load_seconds"})
+                            "edge_len_max", "saddle_ratio", "near_flat_saddle_ratio", "area", "isolated_vertices", "load_seconds"})
         CHECK_THAT(r.out, Catch::Contains(std::string("\"") + key + "\":"));
     CHECK_THAT(r.out, Catch::Contains("\"vertices\":81,") && Catch::Contains("\"boundary_loops\":5,") &&
                           Catch::Contains("\"euler\":-3,") && Catch::Contains("\"bbox_min\":[0,0,0]"));

@@ -73,6 +73,25 @@ TEST_CASE("cylinder, cone, sphere and torus", "[generators]") {
     const double ratio = computeStats(t).saddleRatio;  // the inner half curves negatively
     CHECK(ratio > 0.3);
     CHECK(ratio < 0.7);
+    CHECK(computeStats(t).nearFlatSaddleRatio == 0);  // 32 x 16 segments: every saddle bends clearly
+}
+
+TEST_CASE("near-flat saddles: a gently curved saddle surface", "[generators]") {
+    // z = k (x^2 - y^2) on a grid: every interior vertex is a saddle, with an angle excess
+    // that grows with k; a gentle surface has only near-flat ones, a steep one few (its
+    // flattest corners).
+    auto saddleSurface = [](double k) {
+        Mesh m = planeGrid(12, 12, 1.0);
+        for (Vec3& p : m.positions) p.z = k * ((p.x - 0.5) * (p.x - 0.5) - (p.y - 0.5) * (p.y - 0.5));
+        return m;
+    };
+    const MeshStats gentle = computeStats(saddleSurface(0.01));
+    CHECK(gentle.saddleVertices == gentle.interiorVertices);
+    CHECK(gentle.nearFlatSaddleVertices == gentle.saddleVertices);
+    CHECK(gentle.nearFlatSaddleRatio == Approx(1.0));
+    const MeshStats steep = computeStats(saddleSurface(3.0));
+    CHECK(steep.saddleVertices == steep.interiorVertices);
+    CHECK(steep.nearFlatSaddleVertices * 10 < steep.saddleVertices);
 }
 
 TEST_CASE("bumpy torus: the demo mesh", "[generators]") {

@@ -44,6 +44,8 @@ void printStatsText(FILE* out, const MeshStats& s) {
     std::fprintf(out, "  edge length       min %.6g, mean %.6g, max %.6g\n", s.edgeLenMin, s.edgeLenMean, s.edgeLenMax);
     std::fprintf(out, "  saddle vertices   %.2f%% of %" PRIu64 " interior vertices\n", 100 * s.saddleRatio,
                  s.interiorVertices);
+    std::fprintf(out, "  near-flat saddles %.2f%% (angle sum below 2 pi x %.3f: thin shadows, many exact windows)\n",
+                 100 * s.nearFlatSaddleRatio, 1 + kNearFlatSaddleExcess);
     std::fprintf(out, "  area              %.6g\n", s.area);
 }
 
@@ -65,6 +67,7 @@ std::string statsJson(const std::string& file, const MeshStats& s, double loadSe
     j += ",\"edge_len_mean\":" + num(s.edgeLenMean);
     j += ",\"edge_len_max\":" + num(s.edgeLenMax);
     j += ",\"saddle_ratio\":" + num(s.saddleRatio);
+    j += ",\"near_flat_saddle_ratio\":" + num(s.nearFlatSaddleRatio);
     j += ",\"area\":" + num(s.area);
     j += ",\"isolated_vertices\":" + std::to_string(s.isolatedVertices);
     j += ",\"load_seconds\":" + num(loadSeconds);

@@ -14,6 +14,9 @@ struct ComponentStats {
     int64_t euler = 0, genus = 0;
 };
 
+// A saddle whose angle sum is below 2*pi * (1 + this) counts as near-flat.
+constexpr double kNearFlatSaddleExcess = 1e-3;
+
 struct MeshStats {
     uint64_t vertices = 0;          // all vertices, isolated ones included
     uint64_t faces = 0;
@@ -38,8 +41,6 @@ struct MeshStats {
     double area = 0;
     std::vector<ComponentStats> componentList;
 };
-
-constexpr double kNearFlatSaddleExcess = 1e-3;
 
 // Requires built connectivity (throws std::invalid_argument otherwise).
 MeshStats computeStats(const Mesh& mesh);

@@ -51,16 +51,21 @@ pid_t startTool(const std::vector<std::string>& args, const std::string& errPath
     return pid;
 }
 
-// Waits until the file contains `marker` (or the process ended); false after 120 s.
-bool waitFor(const std::string& path, const std::string& marker, pid_t pid) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+// Waits until the file contains `marker`. Returns "" once it does, otherwise what went
+// wrong: the process ended first, or ten minutes passed. The deadline only guards against a
+// hang: under the sanitizers, with another test on the second core, the bake takes over two
+// minutes to reach its overlay stage.
+std::string waitFor(const std::string& path, const std::string& marker, pid_t pid) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(10);
     while (std::chrono::steady_clock::now() < deadline) {
-        if (test::readText(path).find(marker) != std::string::npos) return true;
+        if (test::readText(path).find(marker) != std::string::npos) return "";
         int status = 0;
-        if (::waitpid(pid, &status, WNOHANG) == pid) return false;
+        if (::waitpid(pid, &status, WNOHANG) == pid) return "the bake ended first: " + test::readText(path);
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
-    return false;
+    ::kill(pid, SIGKILL);  // leave no bake running behind a failed test
+    ::waitpid(pid, nullptr, 0);
+    return "no such line after 10 minutes: " + test::readText(path);
 }
 
 }  // namespace
@@ -136,7 +141,7 @@ TEST_CASE("interrupts: SIGINT or SIGTERM stop a bake cleanly, SIGKILL leaves no 
         INFO("signal " << c.signal << " after '" << c.after << "'");
         const pid_t pid = startTool({"bake", mesh, "-o", out, "--threads", "2"}, err);
         REQUIRE(pid > 0);
-        REQUIRE(waitFor(err, c.after, pid));
+        REQUIRE(waitFor(err, c.after, pid) == "");
         ::kill(pid, c.signal);
         int status = 0;
         REQUIRE(::waitpid(pid, &status, 0) == pid);

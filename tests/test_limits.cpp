@@ -53,8 +53,8 @@ pid_t startTool(const std::vector<std::string>& args, const std::string& errPath
 
 // Waits until the file contains `marker`. Returns "" once it does, otherwise what went
 // wrong: the process ended first, or ten minutes passed. The deadline only guards against a
-// hang: under the sanitizers, with another test on the second core, the bake takes over two
-// minutes to reach its overlay stage.
+// hang: the sanitized bake reaches its overlay stage after 26 s alone, but had not after two
+// minutes in a CI run with another test on the second core.
 std::string waitFor(const std::string& path, const std::string& marker, pid_t pid) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(10);
     while (std::chrono::steady_clock::now() < deadline) {

@@ -80,6 +80,19 @@ inline uint32_t quantum(const uint8_t* packed, uint64_t k) {
     return (word >> ((uint32_t(k) & 1u) << 2)) & 0xFFFu;
 }
 
+// Entries k0 .. k0 + n of a packed 12-bit array into out[0..n): two quanta per three bytes,
+// without the per-entry parity shift of quantum().
+inline void unpackQuanta(const uint8_t* packed, uint64_t k0, uint32_t n, uint32_t* __restrict out) {
+    uint32_t t = 0;
+    if ((k0 & 1) && n > 0) out[t++] = quantum(packed, k0);
+    const uint8_t* g = packed + 3 * ((k0 + t) >> 1);
+    for (; t + 1 < n; t += 2, g += 3) {
+        out[t] = uint32_t(g[0]) | ((uint32_t(g[1]) & 0xFu) << 8);
+        out[t + 1] = (uint32_t(g[1]) >> 4) | (uint32_t(g[2]) << 4);
+    }
+    if (t < n) out[t] = quantum(packed, k0 + t);
+}
+
 // Second layer (upper triangle): first entry of row i, its entry for column i + 1.
 inline uint64_t rowStart(const Patch& p, uint32_t i) {
     return p.matrixBegin + uint64_t(i) * (2 * uint64_t(p.slotCount) - i - 1) / 2;

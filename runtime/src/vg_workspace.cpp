@@ -9,7 +9,17 @@
 namespace {
 
 constexpr size_t kAlign = 16;
-constexpr uint32_t kMaxPatchSlots = 65536;
+using vg::kMaxPatchSlots;
+
+// One past the last node slot of any second-layer patch.
+uint64_t secondNodeSlotEnd(const vg_graph& g) {
+    uint64_t end = 0;
+    for (uint32_t i = 0; i < g.secondCount; ++i) {
+        const uint64_t e = uint64_t(g.second[i].slotBegin) + g.second[i].nodeCount;
+        if (e > end) end = e;
+    }
+    return end;
+}
 
 struct Layout {
     unsigned char* base;  // nullptr while only measuring
@@ -52,6 +62,12 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.patchBestNode = L.take<uint32_t>(kMaxPatchSlots);
     o.patchEdgeBegin = L.take<uint32_t>(kMaxPatchSlots + 1);
     o.patchEdges = L.take<vg::CrossingEdge>(vg::kMaxPatchEdges);
+    o.patchQueue.key = L.take<float>(g.secondCount);
+    o.patchQueue.position = L.take<uint32_t>(g.secondCount);
+    o.patchQueue.heap = L.take<uint32_t>(g.secondCount);
+    o.patchQueue.size = 0;
+    o.slotSent = L.take<float>(secondNodeSlotEnd(g));
+    o.rowQuanta = L.take<uint32_t>(kMaxPatchSlots);
     o.targetEndpoints = L.take<vg::Endpoint>(vg::kTargetChunk);
     o.pathNodes = L.take<uint32_t>(N + 1);
     o.pathLegs = L.take<vg::PathLeg>(vg::maxPathLegs(N));

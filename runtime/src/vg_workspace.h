@@ -13,6 +13,7 @@ constexpr uint32_t kFirstLayerBit = 0x80000000u;
 struct Portal;  // vg_path_taut.h
 struct Apex;
 
+constexpr uint32_t kMaxPatchSlots = 65536;  // slots per patch (vertex slots are 16-bit)
 constexpr uint32_t kMaxPatchEdges = 4096;  // border edges unfolded per patch (more are skipped)
 constexpr uint32_t kTargetChunk = 2048;    // surface-point targets resolved at once (k-nearest)
 
@@ -123,6 +124,60 @@ private:
     }
 };
 
+// The second-layer patches whose nodes have labels not yet relaxed through them, by the
+// smallest such label (one-to-all: the search visits a patch at a time, vg_field.cpp).
+struct PatchQueue {
+    float* key;         // per patch, while queued
+    uint32_t* position; // per patch: index in heap, kNone when not queued
+    uint32_t* heap;
+    uint32_t size;
+
+    bool empty() const { return size == 0; }
+    // Queues `patch` with key k, or lowers its key to k.
+    void offer(uint32_t patch, float k) {
+        if (position[patch] == kNone) {
+            key[patch] = k;
+            siftUp(size++, patch);
+        } else if (k < key[patch]) {
+            key[patch] = k;
+            siftUp(position[patch], patch);
+        }
+    }
+    uint32_t pop() {
+        const uint32_t top = heap[0];
+        position[top] = kNone;
+        const uint32_t last = heap[--size];
+        if (size > 0) siftDown(0, last);
+        return top;
+    }
+
+private:
+    void place(uint32_t i, uint32_t patch) {
+        heap[i] = patch;
+        position[patch] = i;
+    }
+    void siftUp(uint32_t i, uint32_t patch) {
+        while (i > 0) {
+            const uint32_t parent = (i - 1) / 2;
+            if (!(key[patch] < key[heap[parent]])) break;
+            place(i, heap[parent]);
+            i = parent;
+        }
+        place(i, patch);
+    }
+    void siftDown(uint32_t i, uint32_t patch) {
+        for (;;) {
+            uint32_t child = 2 * i + 1;
+            if (child >= size) break;
+            if (child + 1 < size && key[heap[child + 1]] < key[heap[child]]) ++child;
+            if (!(key[heap[child]] < key[patch])) break;
+            place(i, heap[child]);
+            i = child;
+        }
+        place(i, patch);
+    }
+};
+
 // A one-to-all query in progress (vg_distance_field_begin / _step). It is live while its
 // generation is the workspace's: any other query on the workspace abandons it.
 struct FieldSlice {
@@ -159,6 +214,9 @@ struct vg_workspace {
     uint32_t* patchBestNode;       // per interior slot of one patch: index of its best node
     uint32_t* patchEdgeBegin;      // per reached node of one patch: first of its crossing edges
     vg::CrossingEdge* patchEdges;
+    vg::PatchQueue patchQueue;     // one-to-all search: patches with news ...
+    float* slotSent;               // ... and per node slot: the label last relaxed through that patch
+    uint32_t* rowQuanta;           // one patch row, unpacked (kMaxPatchSlots)
     vg::Endpoint* targetEndpoints; // kTargetChunk resolved targets (vg_point_k_nearest)
     uint32_t* pathNodes;           // N + 1: a node chain being read off (vg_path)
     vg::PathLeg* pathLegs;         // kMaxPathLegs(N): the route's legs, then ...

@@ -32,6 +32,43 @@ inline void lowerRow(const uint8_t* packed, uint64_t k0, uint32_t n, float base,
     }
 }
 
+// Evaluates the gathered crossings and lowers each one's vertex to it: unfoldPoint and
+// crossingLength (vg_graph.h) written as one branch-free loop, the same operations in
+// the same order (so the same bits), with the failed cases masked to +inf at the end.
+void evaluateCrossings(CrossingBatch& batch, float* best) {
+    const float* __restrict A = batch.a;
+    const float* __restrict B = batch.b;
+    const float* __restrict C = batch.c;
+    const float* __restrict E = batch.e;
+    const float* __restrict L = batch.l;
+    const float* __restrict SX = batch.sx;
+    const float* __restrict SY = batch.sy;
+    float* __restrict out = batch.length;
+    const uint32_t n = batch.count;
+    for (uint32_t i = 0; i < n; ++i) {
+        const float c = C[i], e = E[i], l = L[i], sx = SX[i], sy = SY[i];
+        // The target point (unfoldPoint(c, e, l)); l > 0 for every gathered edge.
+        const float tx = (c * c - e * e + l * l) * (0.5f / l);
+        const float y2 = c * c - tx * tx;
+        const bool unfolds = y2 > 0.0f;
+        const float ty = __builtin_sqrtf(unfolds ? y2 : 1.0f);
+        // The segment to it (crossingLength).
+        const float x = sx + (tx - sx) * (sy / (sy + ty));
+        const bool meets = (x > 0.0f) & (x < l);
+        const float dx = tx - sx, dy = ty + sy;
+        const float d = __builtin_sqrtf(dx * dx + dy * dy);
+        const float viaU = A[i] + c, viaW = B[i] + e;
+        const float viaNode = (viaU < viaW ? viaU : viaW) / kUnfoldSlack;
+        const float length = d < viaNode ? viaNode : d;
+        out[i] = unfolds & meets ? length : __builtin_inff();
+    }
+    for (uint32_t i = 0; i < n; ++i) {
+        float& o = best[batch.vertex[i]];
+        if (out[i] < o) o = out[i];
+    }
+    batch.count = 0;
+}
+
 // The path to an interior vertex may cross the border on an edge next to its best node
 // rather than at the node. The source side of each such edge (its unfolded source point)
 // is the same for every vertex of the patch, so it is computed once per edge here, for
@@ -58,34 +95,39 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, const Frontier& f
             const uint32_t w = g.nodeEdge[e];
             // Both ends must be reached from the same source for one unfolded path.
             if (!nodeActive(g, w) || !f.labelled(w) || f.route[w].origin != f.route[u].origin) continue;
-            for (uint32_t m = g.nodeSecondBegin[w]; m < g.nodeSecondBegin[w + 1]; ++m) {
-                if (g.nodeSecond[m].patch != patchIndex) continue;
-                const uint32_t slot = g.nodeSecond[m].slot;
-                const float b = f.label[w].dist, l = euclidean(g, g.nodeVertex[u], g.nodeVertex[w]);
-                UnfoldedPoint source;
-                if (unfoldPoint(a, b, l, source))
-                    edges[count++] = CrossingEdge{rowStart(p, slot) - (slot + 1) + p.nodeCount, l, b, source};
-            }
+            const uint32_t slot = ws.nodeSlotInPatch[w];
+            if (slot == kNone) continue;
+            const float b = f.label[w].dist, l = euclidean(g, g.nodeVertex[u], g.nodeVertex[w]);
+            UnfoldedPoint source;
+            if (unfoldPoint(a, b, l, source))
+                edges[count++] = CrossingEdge{rowStart(p, slot) - (slot + 1) + p.nodeCount, l, b, source};
         }
     }
     begin[reached] = count;
+    CrossingBatch& batch = ws.crossings;
+    batch.count = 0;
     for (uint32_t j = 0; j < interior; ++j) {
         const uint32_t r = ws.patchBestNode[j];
         if (r == kNone || begin[r] == begin[r + 1]) continue;
         const float a = ws.patchNodeDistance[r];
         const float c = float(quantum(g.secondDistances, ws.patchNodeRow[r] + j)) * p.scale;
-        float& o = ws.patchBest[j];
         for (uint32_t k = begin[r]; k < begin[r + 1]; ++k) {
             const CrossingEdge& E = edges[k];
             const uint32_t q = quantum(g.secondDistances, E.row + j);
             if (q == kNoPathQuantum) continue;
-            const float e = float(q) * p.scale;
-            UnfoldedPoint target;
-            if (!unfoldPoint(c, e, E.length, target)) continue;
-            const float d = crossingLength(E.source, target, E.length, a + c, E.b + e);
-            if (d < o) o = d;
+            if (batch.count == kCrossingChunk) evaluateCrossings(batch, ws.patchBest);
+            const uint32_t i = batch.count++;
+            batch.a[i] = a;
+            batch.b[i] = E.b;
+            batch.c[i] = c;
+            batch.e[i] = float(q) * p.scale;
+            batch.l[i] = E.length;
+            batch.sx[i] = E.source.x;
+            batch.sy[i] = E.source.y;
+            batch.vertex[i] = j;
         }
     }
+    evaluateCrossings(batch, ws.patchBest);
 }
 
 // Vertices of one patch that are not active nodes: best over its settled active nodes.
@@ -127,7 +169,9 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
     }
     for (uint32_t r = 0; r < reached; ++r)
         lowerRow(g.secondDistances, ws.patchNodeRow[r], interior, ws.patchNodeDistance[r], p.scale, r, best, bestNode);
+    for (uint32_t i = 0; i < p.nodeCount; ++i) ws.nodeSlotInPatch[slots[i]] = i;
     unfoldAtBestNodes(g, patchIndex, f, ws, reached);
+    for (uint32_t i = 0; i < p.nodeCount; ++i) ws.nodeSlotInPatch[slots[i]] = kNone;
     for (uint32_t j = 0; j < interior; ++j) {
         const uint32_t v = slots[p.nodeCount + j];
         if (best[j] < out[v]) {

@@ -62,6 +62,12 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.patchBestNode = L.take<uint32_t>(kMaxPatchSlots);
     o.patchEdgeBegin = L.take<uint32_t>(kMaxPatchSlots + 1);
     o.patchEdges = L.take<vg::CrossingEdge>(vg::kMaxPatchEdges);
+    float** crossingArrays[] = {&o.crossings.a, &o.crossings.b,  &o.crossings.c,  &o.crossings.e,
+                                &o.crossings.l, &o.crossings.sx, &o.crossings.sy, &o.crossings.length};
+    for (float** array : crossingArrays) *array = L.take<float>(vg::kCrossingChunk);
+    o.crossings.vertex = L.take<uint32_t>(vg::kCrossingChunk);
+    o.crossings.count = 0;
+    o.nodeSlotInPatch = L.take<uint32_t>(N);
     o.patchQueue.key = L.take<float>(g.secondCount);
     o.patchQueue.position = L.take<uint32_t>(g.secondCount);
     o.patchQueue.heap = L.take<uint32_t>(g.secondCount);
@@ -91,6 +97,7 @@ void clearStamps(vg_workspace& ws) {
     memset(ws.detail, 0, sizeof(uint32_t) * g.firstCount);
     memset(ws.patchStamp, 0, sizeof(uint32_t) * g.secondCount);
     memset(ws.vertexStamp, 0, sizeof(uint32_t) * g.vertexCount);
+    for (uint32_t n = 0; n < g.nodeCount; ++n) ws.nodeSlotInPatch[n] = vg::kNone;
 }
 
 // The A* bounds read a node's position and landmark distances together: one record per

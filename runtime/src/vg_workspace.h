@@ -26,6 +26,17 @@ struct CrossingEdge {
     UnfoldedPoint source;
 };
 
+// Crossings to evaluate, gathered per patch in chunks so that the arithmetic (two square
+// roots and two divisions each) runs as one branch-free loop the compiler vectorises:
+// per crossing, the distances a = d(s, u), b = d(s, w), c = d(t, u), e = d(t, w), the
+// edge length l and the unfolded source point; `vertex` is t's interior slot.
+constexpr uint32_t kCrossingChunk = 1024;
+struct CrossingBatch {
+    float *a, *b, *c, *e, *l, *sx, *sy, *length;  // length: the result, +inf when none
+    uint32_t* vertex;
+    uint32_t count;
+};
+
 struct Potential {
     float value;
     uint32_t stamp;
@@ -214,6 +225,8 @@ struct vg_workspace {
     uint32_t* patchBestNode;       // per interior slot of one patch: index of its best node
     uint32_t* patchEdgeBegin;      // per reached node of one patch: first of its crossing edges
     vg::CrossingEdge* patchEdges;
+    vg::CrossingBatch crossings;   // one-to-all fill: crossings being evaluated
+    uint32_t* nodeSlotInPatch;     // per node: its slot in the patch being filled, else kNone
     vg::PatchQueue patchQueue;     // one-to-all search: patches with news ...
     float* slotSent;               // ... and per node slot: the label last relaxed through that patch
     uint32_t* rowQuanta;           // one patch row, unpacked (kMaxPatchSlots)

@@ -164,8 +164,8 @@ VG_API vg_status vg_distance_field_nearest(const vg_graph* graph, vg_workspace* 
 
 /* The same query time-sliced, for hosts that spread it over frames (as Detour's sliced
  * path search): vg_distance_field_begin checks the arguments and starts it; every
- * vg_distance_field_step does at most `max_steps` units of work (one unit: one graph node
- * settled, one patch filled, or one source's own patches written; each bounded by the
+ * vg_distance_field_step does at most `max_steps` units of work (one unit: one patch
+ * searched, one patch filled, or one source's own patches written; each bounded by the
  * size of a patch) and sets *out_done to 1 once out_distances (and out_nearest, if given)
  * hold bit for bit what vg_distance_field_nearest gives; further steps do nothing. Until
  * then the caller keeps `sources` and the outputs alive and does not read them, and the

@@ -154,6 +154,13 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
             ++reached;
         }
     }
+    // The search's distances of the nodes this patch is home to (each node has one).
+    for (uint32_t i = 0; i < p.nodeCount; ++i) {
+        const uint32_t n = slots[i], v = g.nodeVertex[n];
+        if (!nodeActive(g, n) || !f.labelled(n) || g.vertexPatch[v] != patchIndex) continue;
+        out[v] = f.label[n].dist;
+        if (nearest) nearest[v] = f.route[n].origin;
+    }
     // Merged-away nodes (slots before the interior ones) take the best reached node too.
     for (uint32_t j = 0; j < p.nodeCount; ++j) {
         const uint32_t n = slots[j];
@@ -317,11 +324,6 @@ bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget) {
             if (!ws.patchQueue.empty()) {
                 visitPatch(g, ws.patchQueue.pop(), ws);
                 continue;
-            }
-            for (uint32_t u = 0; u < g.nodeCount; ++u) {
-                if (!nodeActive(g, u) || !F.labelled(u)) continue;
-                out[g.nodeVertex[u]] = F.label[u].dist;
-                if (nearest) nearest[g.nodeVertex[u]] = F.route[u].origin;
             }
             s.phase = Fill;
             s.next = 0;

@@ -130,7 +130,8 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, const Frontier& f
     evaluateCrossings(batch, ws.patchBest);
 }
 
-// Vertices of one patch that are not active nodes: best over its settled active nodes.
+// Vertices of one patch that are not active nodes: best over its reached active nodes
+// (whose labels are final once the search is done).
 void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_workspace& ws, float* out,
                uint32_t* nearest) {
     const Patch& p = g.second[patchIndex];
@@ -194,7 +195,7 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
 // smallest label it has not yet relaxed, and relaxes all such labels together (a
 // label-correcting search: a node may be relaxed again through a patch when its label
 // drops later; the labels end at the same shortest paths, up to the 12-bit rounding of
-// the entries, and a field is ~1.3x faster on igea, BENCHMARKS.md).
+// the entries, and an igea field is 1.13-1.27x faster, BENCHMARKS.md).
 
 // Node v's label became d through patch `via` (kNone: a seed): every other patch of v must
 // relax it; `via` need not, as its own row gave it (patch distances obey the triangle

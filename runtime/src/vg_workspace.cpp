@@ -68,9 +68,8 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.crossings.vertex = L.take<uint32_t>(vg::kCrossingChunk);
     o.crossings.count = 0;
     o.nodeSlotInPatch = L.take<uint32_t>(N);
-    o.patchQueue.key = L.take<float>(g.secondCount);
     o.patchQueue.position = L.take<uint32_t>(g.secondCount);
-    o.patchQueue.heap = L.take<uint32_t>(g.secondCount);
+    o.patchQueue.heap = L.take<vg::HeapEntry>(g.secondCount);
     o.patchQueue.size = 0;
     o.slotSent = L.take<float>(secondNodeSlotEnd(g));
     o.rowQuanta = L.take<uint32_t>(kMaxPatchSlots);

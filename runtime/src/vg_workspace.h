@@ -44,8 +44,33 @@ struct Potential {
 
 struct HeapEntry {
     float key;
-    uint32_t node;
+    uint32_t node;  // a node id, or a patch id in the PatchQueue
 };
+
+// The binary min-heap moves shared by the Frontier and the PatchQueue; place(i, e) stores
+// e at heap[i] and records where its id now sits.
+template <class Place>
+inline void heapSiftUp(HeapEntry* heap, uint32_t i, HeapEntry e, Place&& place) {
+    while (i > 0) {
+        const uint32_t parent = (i - 1) / 2;
+        if (!(e.key < heap[parent].key)) break;
+        place(i, heap[parent]);
+        i = parent;
+    }
+    place(i, e);
+}
+template <class Place>
+inline void heapSiftDown(HeapEntry* heap, uint32_t size, uint32_t i, HeapEntry e, Place&& place) {
+    for (;;) {
+        uint32_t child = 2 * i + 1;
+        if (child >= size) break;
+        if (child + 1 < size && heap[child + 1].key < heap[child].key) ++child;
+        if (!(heap[child].key < e.key)) break;
+        place(i, heap[child]);
+        i = child;
+    }
+    place(i, e);
+}
 
 // A node's label in one search direction: what every relaxation reads (kept small so
 // that more of them stay in cache) ...
@@ -114,78 +139,44 @@ private:
         route[e.node].heapPos = i;
     }
     void siftUp(uint32_t i, HeapEntry e) {
-        while (i > 0) {
-            const uint32_t parent = (i - 1) / 2;
-            if (!(e.key < heap[parent].key)) break;
-            place(i, heap[parent]);
-            i = parent;
-        }
-        place(i, e);
+        heapSiftUp(heap, i, e, [this](uint32_t j, HeapEntry x) { place(j, x); });
     }
     void siftDown(uint32_t i, HeapEntry e) {
-        for (;;) {
-            uint32_t child = 2 * i + 1;
-            if (child >= size) break;
-            if (child + 1 < size && heap[child + 1].key < heap[child].key) ++child;
-            if (!(heap[child].key < e.key)) break;
-            place(i, heap[child]);
-            i = child;
-        }
-        place(i, e);
+        heapSiftDown(heap, size, i, e, [this](uint32_t j, HeapEntry x) { place(j, x); });
     }
 };
 
 // The second-layer patches whose nodes have labels not yet relaxed through them, by the
 // smallest such label (one-to-all: the search visits a patch at a time, vg_field.cpp).
 struct PatchQueue {
-    float* key;         // per patch, while queued
-    uint32_t* position; // per patch: index in heap, kNone when not queued
-    uint32_t* heap;
+    uint32_t* position;  // per patch: index in heap, kNone when not queued
+    HeapEntry* heap;     // (smallest unrelaxed label, patch)
     uint32_t size;
 
     bool empty() const { return size == 0; }
     // Queues `patch` with key k, or lowers its key to k.
     void offer(uint32_t patch, float k) {
-        if (position[patch] == kNone) {
-            key[patch] = k;
-            siftUp(size++, patch);
-        } else if (k < key[patch]) {
-            key[patch] = k;
-            siftUp(position[patch], patch);
-        }
+        if (position[patch] == kNone) siftUp(size++, HeapEntry{k, patch});
+        else if (k < heap[position[patch]].key) siftUp(position[patch], HeapEntry{k, patch});
     }
     uint32_t pop() {
-        const uint32_t top = heap[0];
+        const uint32_t top = heap[0].node;
         position[top] = kNone;
-        const uint32_t last = heap[--size];
+        const HeapEntry last = heap[--size];
         if (size > 0) siftDown(0, last);
         return top;
     }
 
 private:
-    void place(uint32_t i, uint32_t patch) {
-        heap[i] = patch;
-        position[patch] = i;
+    void place(uint32_t i, HeapEntry e) {
+        heap[i] = e;
+        position[e.node] = i;
     }
-    void siftUp(uint32_t i, uint32_t patch) {
-        while (i > 0) {
-            const uint32_t parent = (i - 1) / 2;
-            if (!(key[patch] < key[heap[parent]])) break;
-            place(i, heap[parent]);
-            i = parent;
-        }
-        place(i, patch);
+    void siftUp(uint32_t i, HeapEntry e) {
+        heapSiftUp(heap, i, e, [this](uint32_t j, HeapEntry x) { place(j, x); });
     }
-    void siftDown(uint32_t i, uint32_t patch) {
-        for (;;) {
-            uint32_t child = 2 * i + 1;
-            if (child >= size) break;
-            if (child + 1 < size && key[heap[child + 1]] < key[heap[child]]) ++child;
-            if (!(key[heap[child]] < key[patch])) break;
-            place(i, heap[child]);
-            i = child;
-        }
-        place(i, patch);
+    void siftDown(uint32_t i, HeapEntry e) {
+        heapSiftDown(heap, size, i, e, [this](uint32_t j, HeapEntry x) { place(j, x); });
     }
 };
 

@@ -89,7 +89,7 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, 
 
     detailAround(g, s, ws.detail, gen);
     detailAround(g, t, ws.detail, gen);
-    const Scope scope{ws.detail, gen, false};
+    const Scope scope{ws.detail, gen};
 
     const float* ps = s.position;
     const float* pt = t.position;

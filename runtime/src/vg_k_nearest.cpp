@@ -86,7 +86,7 @@ void searchChunk(const vg_graph& g, vg_workspace& ws, const Endpoint& source, co
                 best.offer(distance3(source.position, resolved[i].position), first + i);
 
     Frontier& F = ws.forward;
-    const Scope scope{ws.detail, gen, false};
+    const Scope scope{ws.detail, gen};
     auto key = [](uint32_t, float dv) { return dv; };
     auto none = [](uint32_t, float) {};
     seedEndpoint(g, source, 0, F, key, none);

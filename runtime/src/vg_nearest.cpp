@@ -74,7 +74,7 @@ extern "C" vg_status vg_nearest(const vg_graph* graph, vg_workspace* workspace, 
         forEachPatchOf(g, source, [&](uint32_t patch, uint32_t slot) { offerPatch(patch, slot, 0.0f); });
 
         Frontier& F = ws.forward;
-        const Scope scope{ws.detail, gen, false};
+        const Scope scope{ws.detail, gen};
         auto key = [](uint32_t, float dv) { return dv; };
         auto none = [](uint32_t, float) {};
         seedEndpoint(g, source, 0, F, key, none);

@@ -16,9 +16,8 @@ namespace vg {
 struct Scope {
     const uint32_t* detail;  // per first-layer patch: == generation when detailed
     uint32_t generation;
-    bool everywhere;         // one-to-all: second layer everywhere, no overlay
 
-    bool detailed(uint32_t firstPatch) const { return everywhere || detail[firstPatch] == generation; }
+    bool detailed(uint32_t firstPatch) const { return detail[firstPatch] == generation; }
 };
 
 // Relaxes row `i` of second-layer patch `patch` (its active node columns) from distance
@@ -82,7 +81,6 @@ inline void relaxNode(const vg_graph& g, uint32_t u, float du, const Scope& scop
         if (patch != from && scope.detailed(g.second[patch].parent))
             relaxSecondRow(g, patch, g.nodeSecond[m].slot, du, origin, u, f, keyOf, onImprove);
     }
-    if (scope.everywhere) return;
     for (uint32_t m = g.nodeFirstBegin[u]; m < g.nodeFirstBegin[u + 1]; ++m) {
         const uint32_t patch = g.nodeFirst[m].patch;
         if ((patch | kFirstLayerBit) != from && !scope.detailed(patch))

@@ -1,5 +1,6 @@
-// The graph search shared by every query (thesis 3.7). Nodes are the second-layer border
-// vertices. Settling node u relaxes
+// The graph search of the point-to-point and nearest queries (thesis 3.7; one-to-all takes
+// only its seeding from here and searches a patch at a time, vg_field.cpp). Nodes are the
+// second-layer border vertices. Settling node u relaxes
 //   * inside every second-layer patch of u whose first-layer patch is "detailed" (holds
 //     an endpoint of the query): the patch matrix row of u, to every active node;
 //   * elsewhere: u's first-layer overlay rows (node x node shortest paths across a whole

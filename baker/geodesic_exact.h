@@ -87,6 +87,7 @@ public:
 
 private:
     friend class ExactWorkspace;
+    friend class WavefrontWorkspace;
     void precompute();
     void splitPinchedVertices();
 

@@ -1,0 +1,340 @@
+#include "geodesic_wavefront.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace vorogeo {
+
+namespace {
+
+constexpr uint32_t kNil = 0xFFFFFFFFu;
+
+inline double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
+
+// Parameter t along the line O + t u (u a unit vector) where the line through the source
+// S and the edge point (x, 0) meets it.
+inline double meetLine(double ox, double oy, double ux, double uy, double sx, double sy, double x) {
+    const double dx = x - sx, dy = -sy;
+    return cross2(sx - ox, sy - oy, dx, dy) / cross2(ux, uy, dx, dy);
+}
+
+// Whether the segments from S1 to (x1, 0) and from S2 to (x2, 0) cross before the edge:
+// then the two paths have swapped sides by the time they enter the face.
+inline bool crossBeforeEdge(double s1x, double s1y, double x1, double s2x, double s2y, double x2) {
+    const double d1x = s1x - x1, d2x = s2x - x2;
+    const double den = cross2(d1x, s1y, d2x, s2y);
+    if (den == 0.0) return false;
+    const double y = cross2(x2 - x1, 0.0, d2x, s2y) / den * s1y;
+    return y <= 0.0 && y >= s1y && y >= s2y;
+}
+
+// Where the straight line from S to the apex C meets the edge (y = 0).
+inline double splitAtApex(double sx, double sy, double cx, double cy) {
+    const double den = cy - sy;
+    if (den <= 0.0) return cx >= sx ? kInfinity : -kInfinity;  // degenerate face
+    return sx - sy * (cx - sx) / den;
+}
+
+}  // namespace
+
+uint32_t WavefrontWorkspace::allocWindow() {
+    ++alive_;
+    ++stats_.windowsCreated;
+    stats_.peakWindows = std::max(stats_.peakWindows, alive_);
+    if (!freeList_.empty()) {
+        const uint32_t id = freeList_.back();
+        freeList_.pop_back();
+        return id;
+    }
+    pool_.push_back(Window{});
+    return uint32_t(pool_.size() - 1);
+}
+
+void WavefrontWorkspace::freeWindow(uint32_t id) {
+    --alive_;
+    freeList_.push_back(id);
+}
+
+void WavefrontWorkspace::append(int32_t h, uint32_t id) {
+    pool_[id].next = kNil;
+    if (listHead_[h] == kNil) listHead_[h] = id;
+    else pool_[listTail_[h]].next = id;
+    listTail_[h] = id;
+}
+
+void WavefrontWorkspace::pushList(int32_t h) {
+    if (h >= 0 && listHead_[h] != kNil) fifo_.push_back(h);
+}
+
+void WavefrontWorkspace::heapUpdate(uint32_t v) {
+    const std::vector<double>& d = *dist_;
+    uint32_t i = heapPos_[v];
+    if (i == kNil) {
+        i = uint32_t(heap_.size());
+        heap_.push_back(v);
+    }
+    while (i > 0) {  // distances only decrease: sift up
+        const uint32_t parent = (i - 1) / 2;
+        if (!(d[v] < d[heap_[parent]])) break;
+        heap_[i] = heap_[parent];
+        heapPos_[heap_[i]] = i;
+        i = parent;
+    }
+    heap_[i] = v;
+    heapPos_[v] = i;
+}
+
+uint32_t WavefrontWorkspace::heapPop() {
+    const std::vector<double>& d = *dist_;
+    const uint32_t top = heap_[0];
+    heapPos_[top] = kNil;
+    const uint32_t last = heap_.back();
+    heap_.pop_back();
+    if (heap_.empty()) return top;
+    const uint32_t n = uint32_t(heap_.size());
+    uint32_t i = 0;
+    for (;;) {
+        uint32_t c = 2 * i + 1;
+        if (c >= n) break;
+        if (c + 1 < n && d[heap_[c + 1]] < d[heap_[c]]) ++c;
+        if (!(d[heap_[c]] < d[last])) break;
+        heap_[i] = heap_[c];
+        heapPos_[heap_[i]] = i;
+        i = c;
+    }
+    heap_[i] = last;
+    heapPos_[last] = i;
+    return top;
+}
+
+// A shorter path to v: a vertex not yet passed joins the queue; one the wavefront has
+// passed re-emits its windows if paths can bend there (its old windows are beaten).
+void WavefrontWorkspace::improve(uint32_t v, double d) {
+    double& cur = (*dist_)[v];
+    if (!(d < cur)) return;
+    cur = d;
+    if (!geo_->alias_.empty())  // the same point in another fan of a patch
+        for (uint32_t a = geo_->alias_[v]; a != v; a = geo_->alias_[a]) improve(a, d);
+    if (state_[v] != kInside) {
+        state_[v] = kFront;
+        heapUpdate(v);
+    } else if (geo_->pseudo_[v]) {
+        emitFromVertex(v, true);
+    }
+}
+
+// Windows from v across the edge opposite v in each of its faces, and its neighbours'
+// distances along its edges.
+void WavefrontWorkspace::emitFromVertex(uint32_t v, bool insideArea) {
+    const Mesh& m = *geo_->mesh_;
+    const double dv = (*dist_)[v];
+    ++stats_.pseudoSources;
+    const int32_t start = m.vertexOut[v];
+    if (start < 0) return;
+    int32_t h = start;
+    do {
+        const int32_t k = Mesh::next(h);  // the edge opposite v in face(h)
+        improve(m.head(h), dv + geo_->edgeLength_[geo_->edgeOf_[h]]);
+        const int32_t g = m.twin[k];
+        if (g >= 0) {
+            const double lk = geo_->edgeLength_[geo_->edgeOf_[k]];
+            const auto& fr = geo_->frame_[k];  // v is k's apex; g is k reversed
+            const uint32_t id = allocWindow();
+            pool_[id] = Window{0.0, lk, lk - fr.apexX, -fr.apexY, dv, kNil};
+            append(g, id);
+            if (insideArea && (state_[m.tail(g)] == kInside || state_[m.head(g)] == kInside)) pushList(g);
+        }
+        h = m.nextAroundVertex(h);
+    } while (h >= 0 && h != start);
+    if (h < 0) {  // a boundary fan: its last neighbour lies on the other boundary edge
+        int32_t last = start;
+        for (int32_t t = start; t >= 0; t = m.nextAroundVertex(t)) last = t;
+        const int32_t p = Mesh::prev(last);
+        improve(m.tail(p), dv + geo_->edgeLength_[geo_->edgeOf_[p]]);
+    }
+}
+
+// Takes every window waiting on half-edge h across its face at once: drops those that a
+// corner of the edge beats at an end, gives the apex its distance from the best of them,
+// and hands each survivor's rays to the face's other two edges, one side only unless it
+// is the window through which the apex is reached (one angle, two sides).
+void WavefrontWorkspace::propagateList(int32_t h) {
+    uint32_t id = listHead_[h];
+    if (id == kNil) return;
+    listHead_[h] = listTail_[h] = kNil;
+    const Mesh& m = *geo_->mesh_;
+    const std::vector<double>& dist = *dist_;
+    const uint32_t a = m.tail(h), b = m.head(h), c = m.apex(h);
+    const double L = geo_->edgeLength_[geo_->edgeOf_[h]];
+    const double cx = geo_->frame_[h].apexX, cy = geo_->frame_[h].apexY;
+    const double da = dist[a], db = dist[b];
+
+    batch_.clear();
+    batchSplit_.clear();
+    double best = kInfinity, bestSplit = 0.0, bestSx = 0.0, bestSy = 0.0;
+    const double tiny = 1e-20 * L;
+    while (id != kNil) {
+        const Window w = pool_[id];
+        const uint32_t next = w.next;
+        ++stats_.windowsPropagated;
+        const double atEnd = w.sigma + std::hypot(w.b1 - w.sx, w.sy);
+        const double atStart = w.sigma + std::hypot(w.b0 - w.sx, w.sy);
+        // A window's distance minus a corner's straight way is monotone along the edge,
+        // so a corner that wins at the far end wins on the whole window.
+        if (da + w.b1 < atEnd || db + (L - w.b0) < atStart) {
+            freeWindow(id);
+        } else {
+            double split = splitAtApex(w.sx, w.sy, cx, cy), toApex;
+            if (split - w.b0 > tiny && split - w.b1 < -tiny) {
+                toApex = w.sigma + std::hypot(cx - w.sx, cy - w.sy);
+            } else if (split - w.b0 <= tiny) {
+                toApex = atStart + std::hypot(cx - w.b0, cy);
+                split = w.b0;
+            } else {
+                toApex = atEnd + std::hypot(cx - w.b1, cy);
+                split = w.b1;
+            }
+            if (toApex < best) {
+                best = toApex;
+                bestSplit = split;
+                bestSx = w.sx;
+                bestSy = w.sy;
+            }
+            batch_.push_back(id);
+            batchSplit_.push_back(split);
+        }
+        id = next;
+    }
+    if (batch_.empty()) return;
+    improve(c, best);
+
+    const int32_t gl = m.twin[Mesh::prev(h)];  // a -> c, beyond the face
+    const int32_t gr = m.twin[Mesh::next(h)];  // c -> b, beyond the face
+    const double ll = std::hypot(cx, cy), lr = std::hypot(L - cx, cy);
+    const double ulx = cx / ll, uly = cy / ll;
+    const double urx = (L - cx) / lr, ury = -cy / lr;
+    const double side = 1e-8 * L;
+    for (size_t i = 0; i < batch_.size(); ++i) {
+        const Window w = pool_[batch_[i]];
+        freeWindow(batch_[i]);
+        bool toLeft = true, toRight = true;
+        const double split = batchSplit_[i];
+        // Rays of w that pass the apex on the far side of the best window's path to it
+        // cross that path, which is shorter up to the crossing: they are not shortest.
+        if (split < bestSplit - side) {
+            if (w.b1 < bestSplit || crossBeforeEdge(bestSx, bestSy, bestSplit, w.sx, w.sy, w.b1)) toRight = false;
+        } else if (split > bestSplit + side) {
+            if (w.b0 > bestSplit || crossBeforeEdge(bestSx, bestSy, bestSplit, w.sx, w.sy, w.b0)) toLeft = false;
+        }
+        const double at = splitAtApex(w.sx, w.sy, cx, cy);
+        if (toLeft && gl >= 0) {
+            const double lo = w.b0, hi = std::min(w.b1, at);
+            if (hi > lo) {
+                const double t0 = std::max(0.0, meetLine(0.0, 0.0, ulx, uly, w.sx, w.sy, lo));
+                const double t1 = std::min(ll, meetLine(0.0, 0.0, ulx, uly, w.sx, w.sy, hi));
+                if (t0 < t1) {
+                    const uint32_t n = allocWindow();
+                    pool_[n] = Window{t0, t1, ulx * w.sx + uly * w.sy, cross2(ulx, uly, w.sx, w.sy), w.sigma, kNil};
+                    append(gl, n);
+                }
+            }
+        }
+        if (toRight && gr >= 0) {
+            const double lo = std::max(w.b0, at), hi = w.b1;
+            if (hi > lo) {
+                const double t0 = std::max(0.0, meetLine(cx, cy, urx, ury, w.sx, w.sy, lo));
+                const double t1 = std::min(lr, meetLine(cx, cy, urx, ury, w.sx, w.sy, hi));
+                if (t0 < t1) {
+                    const double rx = w.sx - cx, ry = w.sy - cy;
+                    const uint32_t n = allocWindow();
+                    pool_[n] = Window{t0, t1, urx * rx + ury * ry, cross2(urx, ury, rx, ry), w.sigma, kNil};
+                    append(gr, n);
+                }
+            }
+        }
+    }
+    // Lists next to the passed area cross their faces now; the others wait for a corner.
+    if (gl >= 0 && (state_[a] == kInside || state_[c] == kInside)) pushList(gl);
+    if (gr >= 0 && (state_[c] == kInside || state_[b] == kInside)) pushList(gr);
+}
+
+// The wavefront passes v: its neighbours join the front, a source or pseudo-source emits,
+// and the lists around it cross their faces.
+void WavefrontWorkspace::popVertex(uint32_t v) {
+    const Mesh& m = *geo_->mesh_;
+    state_[v] = kInside;
+    const int32_t start = m.vertexOut[v];
+    if (start < 0) return;
+    int32_t h = start;
+    do {
+        for (uint32_t u : {m.head(h), m.apex(h)})
+            if (state_[u] == kOutside) state_[u] = kFront;
+        h = m.nextAroundVertex(h);
+    } while (h >= 0 && h != start);
+    if ((*dist_)[v] == 0.0 || geo_->pseudo_[v]) emitFromVertex(v, false);
+    h = start;
+    do {
+        const int32_t p = Mesh::prev(h), k = Mesh::next(h);
+        pushList(h);
+        pushList(m.twin[h]);
+        pushList(p);
+        pushList(m.twin[p]);
+        const int32_t beyond = m.twin[k];
+        if (beyond < 0 || state_[m.apex(beyond)] != kOutside) {
+            pushList(k);
+            pushList(beyond);
+        }
+        h = m.nextAroundVertex(h);
+    } while (h >= 0 && h != start);
+    while (fifoHead_ < fifo_.size()) propagateList(fifo_[fifoHead_++]);
+    fifo_.clear();
+    fifoHead_ = 0;
+}
+
+void WavefrontWorkspace::reset(const ExactGeodesic& geo) {
+    geo_ = &geo;
+    const Mesh& m = *geo.mesh_;
+    pool_.clear();
+    freeList_.clear();
+    listHead_.assign(m.halfedgeCount(), kNil);
+    listTail_.assign(m.halfedgeCount(), kNil);
+    fifo_.clear();
+    fifoHead_ = 0;
+    state_.assign(m.vertexCount(), kOutside);
+    heap_.clear();
+    heapPos_.assign(m.vertexCount(), kNil);
+    alive_ = 0;
+    stats_ = ExactStats{};
+}
+
+void WavefrontWorkspace::run(const ExactGeodesic& geo, const std::vector<uint32_t>& sources,
+                             std::vector<double>& distances, ExactStats* stats) {
+    const uint32_t nv = geo.vertexCount();
+    for (uint32_t s : sources)
+        if (s >= nv) throw std::invalid_argument("source vertex " + std::to_string(s) + " out of range");
+    reset(geo);
+    distances.assign(nv, kInfinity);
+    dist_ = &distances;
+    for (uint32_t s : sources) improve(s, 0.0);
+    while (!heap_.empty()) popVertex(heapPop());
+    if (stats) *stats = stats_;
+    dist_ = nullptr;
+}
+
+size_t WavefrontWorkspace::memoryBytes() const {
+    return pool_.capacity() * sizeof(Window) +
+           (freeList_.capacity() + listHead_.capacity() + listTail_.capacity() + heap_.capacity() +
+            heapPos_.capacity() + batch_.capacity()) * sizeof(uint32_t) +
+           fifo_.capacity() * sizeof(int32_t) + state_.capacity() + batchSplit_.capacity() * sizeof(double);
+}
+
+std::vector<double> wavefrontDistancesFrom(const ExactGeodesic& geo, uint32_t source) {
+    WavefrontWorkspace ws;
+    std::vector<double> d;
+    ws.run(geo, {source}, d);
+    return d;
+}
+
+}  // namespace vorogeo

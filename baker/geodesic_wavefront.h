@@ -1,0 +1,73 @@
+// Exact polyhedral geodesic distances to vertices by triangle-oriented wavefront
+// propagation (in the style of Qin et al. 2016, "VTP"): the same windows as the MMP engine
+// (geodesic_exact.h), but handled as lists per half-edge and propagated across a face all
+// at once, in the order of a vertex queue.
+//
+// Why a second engine: the MMP engine keeps every window on its edge for the rest of the
+// run (its overlap resolution compares each newcomer with the edge's earlier windows), so
+// on meshes with many near-flat saddles its memory grows to the whole exact field (~1 GB on
+// igea). Here a window lives only until it has crossed its face: windows are pruned by the
+// distances of the face's vertices and by "one angle, two sides" (of the windows of one
+// list, only the one giving the face's third vertex its distance may reach both of the
+// face's other edges), so the working set stays the wavefront. Distances are exact at the
+// vertices, as MMP's; there are no distances between vertices afterwards (distanceAt needs
+// the MMP engine's windows).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "geodesic_exact.h"
+
+namespace vorogeo {
+
+class WavefrontWorkspace {
+public:
+    // Distances from the source vertices to every domain vertex (+inf if unreachable).
+    // Throws std::invalid_argument on an out-of-range source.
+    void run(const ExactGeodesic& geo, const std::vector<uint32_t>& sources, std::vector<double>& distances,
+             ExactStats* stats = nullptr);
+
+    size_t memoryBytes() const;
+
+private:
+    struct Window {
+        double b0, b1;  // extent along the half-edge, from its tail
+        double sx, sy;  // (pseudo-)source in the half-edge's frame (below it: sy <= 0)
+        double sigma;   // distance from the real source to the pseudo-source
+        uint32_t next;  // next window of the same list
+    };
+    enum : uint8_t { kOutside = 0, kFront = 1, kInside = 2 };
+
+    void reset(const ExactGeodesic& geo);
+    uint32_t allocWindow();
+    void freeWindow(uint32_t id);
+    void append(int32_t h, uint32_t id);
+    void pushList(int32_t h);
+    void improve(uint32_t v, double d);
+    void emitFromVertex(uint32_t v, bool insideArea);
+    void propagateList(int32_t h);
+    void popVertex(uint32_t v);
+    // The vertex heap (a binary heap on distance with positions, for decrease-key).
+    void heapUpdate(uint32_t v);
+    uint32_t heapPop();
+
+    const ExactGeodesic* geo_ = nullptr;
+    std::vector<double>* dist_ = nullptr;
+    std::vector<Window> pool_;
+    std::vector<uint32_t> freeList_;
+    std::vector<uint32_t> listHead_, listTail_;  // per half-edge
+    std::vector<int32_t> fifo_;                  // half-edges whose lists wait to cross their face
+    size_t fifoHead_ = 0;
+    std::vector<uint8_t> state_;
+    std::vector<uint32_t> heap_, heapPos_;
+    std::vector<uint32_t> batch_;  // the windows of the list being propagated
+    std::vector<double> batchSplit_;
+    uint64_t alive_ = 0;
+    ExactStats stats_;
+};
+
+// One source vertex to every vertex of `geo`'s domain with the wavefront engine.
+std::vector<double> wavefrontDistancesFrom(const ExactGeodesic& geo, uint32_t source);
+
+}  // namespace vorogeo

@@ -1,0 +1,131 @@
+// The wavefront engine (geodesic_wavefront.h) against the MMP engine, which the golden
+// tests tie to CGAL, and against CGAL's fields directly where ../shared is present: both
+// are exact, so they must agree to rounding on every vertex of every kind of mesh.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "generators.h"
+#include "geodesic_exact.h"
+#include "geodesic_wavefront.h"
+#include "mesh_io.h"
+#include "test_helpers.h"
+
+using namespace vorogeo;
+
+namespace {
+
+std::vector<double> mmpField(const ExactGeodesic& geo, const std::vector<uint32_t>& sources) {
+    ExactWorkspace ws;
+    ExactQuery q;
+    for (uint32_t s : sources) q.sources.push_back(GeodesicSource::atVertex(s));
+    std::vector<double> d;
+    ws.run(geo, q, d);
+    return d;
+}
+
+// Largest relative difference; an infinity must be matched by an infinity.
+double disagreement(const std::vector<double>& got, const std::vector<double>& want) {
+    REQUIRE(got.size() == want.size());
+    double worst = 0;
+    for (size_t v = 0; v < got.size(); ++v) {
+        REQUIRE_FALSE(std::isnan(got[v]));
+        REQUIRE(std::isinf(got[v]) == std::isinf(want[v]));
+        if (std::isinf(want[v])) continue;
+        worst = std::max(worst, std::fabs(got[v] - want[v]) / std::max(want[v], 1e-300));
+    }
+    return worst;
+}
+
+void checkAgainstMmp(const std::string& name, const Mesh& mesh) {
+    INFO(name);
+    ExactGeodesic geo(mesh);
+    WavefrontWorkspace ws;  // reused across runs, as a worker would
+    const uint32_t n = mesh.vertexCount();
+    for (uint32_t s : {0u, n / 3, n / 2 + 1, n - 1}) {
+        INFO("source " << s);
+        std::vector<double> d;
+        ExactStats stats;
+        ws.run(geo, {s}, d, &stats);
+        CHECK(d[s] == 0.0);
+        CHECK(disagreement(d, mmpField(geo, {s})) < 1e-10);
+        CHECK(stats.windowsPropagated == stats.windowsCreated);  // every window crosses or dies
+    }
+    std::vector<double> d;
+    ws.run(geo, {1, n - 2}, d);
+    CHECK(disagreement(d, mmpField(geo, {1, n - 2})) < 1e-10);
+}
+
+}  // namespace
+
+TEST_CASE("wavefront: flat, developable and cone meshes give their closed forms", "[exact][wavefront]") {
+    const Mesh grid = planeGrid(24, 17, 2.0, 0.6, 7);
+    ExactGeodesic geo(grid);
+    for (uint32_t s : {0u, 200u, grid.vertexCount() - 1}) {
+        const std::vector<double> d = wavefrontDistancesFrom(geo, s);
+        for (uint32_t v = 0; v < grid.vertexCount(); ++v)
+            REQUIRE(d[v] == Approx(distance(grid.positions[s], grid.positions[v])).epsilon(1e-12).margin(1e-14));
+    }
+    checkAgainstMmp("cylinder", openCylinder(1.0, 3.0, 24, 10));
+    checkAgainstMmp("cone", cone(1.0, 2.0, 16, 8));
+}
+
+TEST_CASE("wavefront: agrees with MMP on saddles, needles, noise, holes and components", "[exact][wavefront]") {
+    checkAgainstMmp("needles", needleMesh());
+    checkAgainstMmp("noisy sphere", noisy(icosphere(3), 0.02, 5));
+    checkAgainstMmp("holes", gridWithHoles(16, 5));
+    checkAgainstMmp("bumpy torus", bumpyTorus(60, 30));
+    checkAgainstMmp("noisy torus", noisy(torus(1.0, 0.4, 48, 24), 0.01, 3));
+    checkAgainstMmp("two components", twoComponents());
+}
+
+TEST_CASE("wavefront: a patch domain, pinched vertex included, matches MMP", "[exact][wavefront]") {
+    const Mesh m = bumpyTorus(60, 30);
+    std::vector<uint32_t> faces;
+    for (uint32_t f = 0; f < m.faceCount(); ++f)
+        if ((f / 7) % 3 != 1) faces.push_back(f);  // a domain full of holes and pinches
+    ExactGeodesic patch(m, faces);
+    WavefrontWorkspace ws;
+    for (uint32_t s : {0u, patch.vertexCount() / 2}) {
+        std::vector<double> d;
+        ws.run(patch, {s}, d);
+        CHECK(disagreement(d, mmpField(patch, {s})) < 1e-10);
+    }
+}
+
+TEST_CASE("wavefront: out-of-range sources are rejected", "[exact][wavefront]") {
+    const Mesh m = planeGrid(4, 4);
+    ExactGeodesic geo(m);
+    WavefrontWorkspace ws;
+    std::vector<double> d;
+    CHECK_THROWS_AS(ws.run(geo, {m.vertexCount()}, d), std::invalid_argument);
+}
+
+TEST_CASE("wavefront: CGAL's golden fields of the smaller shared meshes", "[exact][wavefront][golden]") {
+    const std::string dir = test::sharedMeshDir();
+    if (dir.empty()) {
+        WARN("skipped: ../shared/meshes is absent, no golden fields to compare with");
+        return;
+    }
+    const std::filesystem::path golden = std::filesystem::path(dir).parent_path() / "golden";
+    size_t fields = 0;
+    for (const char* name : {"spot", "fandisk", "rocker-arm"}) {
+        Mesh mesh;
+        REQUIRE(loadMesh(dir + "/" + name + ".ply", LoadOptions{}, mesh).ok);
+        ExactGeodesic geo(mesh);
+        for (const auto& entry : std::filesystem::directory_iterator(golden)) {
+            const std::string file = entry.path().filename().string(), prefix = std::string(name) + ".field.";
+            if (file.rfind(prefix, 0) != 0) continue;
+            std::vector<double> want(mesh.vertexCount());
+            std::ifstream in(entry.path());
+            for (double& x : want) REQUIRE(in >> x);
+            INFO(file);
+            CHECK(disagreement(wavefrontDistancesFrom(geo, uint32_t(std::stoul(file.substr(prefix.size())))), want) <
+                  1e-6);
+            ++fields;
+        }
+    }
+    CHECK(fields == 6);
+}

@@ -1,4 +1,5 @@
 #include "geodesic_wavefront.h"
+#include "window_math.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +13,7 @@ namespace {
 constexpr uint32_t kNil = 0xFFFFFFFFu;
 
 inline double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
+inline double len2(double x, double y) { return std::sqrt(x * x + y * y); }  // no hypot: the scaling is not needed
 
 // Parameter t along the line O + t u (u a unit vector) where the line through the source
 // S and the edge point (x, 0) meets it.
@@ -172,47 +174,49 @@ void WavefrontWorkspace::propagateList(int32_t h) {
     const double da = dist[a], db = dist[b];
 
     batch_.clear();
+    while (id != kNil) {
+        const Window& w = pool_[id];
+        const uint32_t next = w.next;
+        ++stats_.windowsPropagated;
+        // A window's distance minus a corner's straight way is monotone along the edge,
+        // so a corner that wins at the far end wins on the whole window.
+        if (da + w.b1 < windowDistance(w.sx, w.sy, w.sigma, w.b1) ||
+            db + (L - w.b0) < windowDistance(w.sx, w.sy, w.sigma, w.b0))
+            freeWindow(id);
+        else
+            batch_.push_back(id);
+        id = next;
+    }
+
     batchSplit_.clear();
     double best = kInfinity, bestSplit = 0.0, bestSx = 0.0, bestSy = 0.0;
     const double tiny = 1e-20 * L;
-    while (id != kNil) {
-        const Window w = pool_[id];
-        const uint32_t next = w.next;
-        ++stats_.windowsPropagated;
-        const double atEnd = w.sigma + std::hypot(w.b1 - w.sx, w.sy);
-        const double atStart = w.sigma + std::hypot(w.b0 - w.sx, w.sy);
-        // A window's distance minus a corner's straight way is monotone along the edge,
-        // so a corner that wins at the far end wins on the whole window.
-        if (da + w.b1 < atEnd || db + (L - w.b0) < atStart) {
-            freeWindow(id);
+    for (uint32_t i : batch_) {
+        const Window& w = pool_[i];
+        double split = splitAtApex(w.sx, w.sy, cx, cy), toApex;
+        if (split - w.b0 > tiny && split - w.b1 < -tiny) {
+            toApex = w.sigma + len2(cx - w.sx, cy - w.sy);
+        } else if (split - w.b0 <= tiny) {
+            toApex = windowDistance(w.sx, w.sy, w.sigma, w.b0) + len2(cx - w.b0, cy);
+            split = w.b0;
         } else {
-            double split = splitAtApex(w.sx, w.sy, cx, cy), toApex;
-            if (split - w.b0 > tiny && split - w.b1 < -tiny) {
-                toApex = w.sigma + std::hypot(cx - w.sx, cy - w.sy);
-            } else if (split - w.b0 <= tiny) {
-                toApex = atStart + std::hypot(cx - w.b0, cy);
-                split = w.b0;
-            } else {
-                toApex = atEnd + std::hypot(cx - w.b1, cy);
-                split = w.b1;
-            }
-            if (toApex < best) {
-                best = toApex;
-                bestSplit = split;
-                bestSx = w.sx;
-                bestSy = w.sy;
-            }
-            batch_.push_back(id);
-            batchSplit_.push_back(split);
+            toApex = windowDistance(w.sx, w.sy, w.sigma, w.b1) + len2(cx - w.b1, cy);
+            split = w.b1;
         }
-        id = next;
+        if (toApex < best) {
+            best = toApex;
+            bestSplit = split;
+            bestSx = w.sx;
+            bestSy = w.sy;
+        }
+        batchSplit_.push_back(split);
     }
     if (batch_.empty()) return;
     improve(c, best);
 
     const int32_t gl = m.twin[Mesh::prev(h)];  // a -> c, beyond the face
     const int32_t gr = m.twin[Mesh::next(h)];  // c -> b, beyond the face
-    const double ll = std::hypot(cx, cy), lr = std::hypot(L - cx, cy);
+    const double ll = len2(cx, cy), lr = len2(L - cx, cy);
     const double ulx = cx / ll, uly = cy / ll;
     const double urx = (L - cx) / lr, ury = -cy / lr;
     const double side = 1e-8 * L;

@@ -1,6 +1,6 @@
-// The exact engine against CGAL's exact distances in ../shared/golden (an independent
-// implementation): every pair and field value within 1e-6 relative (1e-9 x bounding-box
-// diagonal near zero). The larger meshes are checked by `vorogeo exact --pairs`
+// Both exact engines (wavefront and MMP) against CGAL's exact distances in ../shared/golden
+// (an independent implementation): every pair and field value within 1e-6 relative (1e-9 x
+// bounding-box diagonal near zero). The larger meshes are checked by `vorogeo exact --pairs`
 // (scripts/check-exact.sh) because they take minutes.
 #include <catch2/catch.hpp>
 
@@ -33,11 +33,13 @@ void checkGoldenMesh(const std::string& name) {
     std::string error;
     REQUIRE(tools::readPairs(golden + "/" + name + ".pairs.csv", pairs, error));
     REQUIRE(pairs.size() == 10000);
-    const tools::PairCheckResult r = tools::checkPairs(geo, pairs, tol, 0);
-    INFO(name << ": worst pair " << r.worst.source << "," << r.worst.target << " = " << r.worstValue << " vs "
-              << r.worst.distance);
-    CHECK(r.failures == 0);
-    CHECK(r.maxRelError <= 1e-6);
+    for (tools::ExactEngine engine : {tools::ExactEngine::Wavefront, tools::ExactEngine::Mmp}) {
+        const tools::PairCheckResult r = tools::checkPairs(geo, pairs, tol, 0, engine);
+        INFO(name << " (" << tools::engineName(engine) << "): worst pair " << r.worst.source << ","
+                  << r.worst.target << " = " << r.worstValue << " vs " << r.worst.distance);
+        CHECK(r.failures == 0);
+        CHECK(r.maxRelError <= 1e-6);
+    }
 
     size_t fields = 0;
     for (const auto& entry : std::filesystem::directory_iterator(golden)) {
@@ -47,9 +49,11 @@ void checkGoldenMesh(const std::string& name) {
         const uint32_t source = uint32_t(std::stoul(file.substr(prefix.size())));
         std::vector<double> values;
         REQUIRE(tools::readField(entry.path().string(), values, error));
-        const tools::FieldCheckResult f = tools::checkField(geo, source, values, tol);
-        INFO(file << ": worst vertex " << f.worstVertex);
-        CHECK(f.failures == 0);
+        for (tools::ExactEngine engine : {tools::ExactEngine::Wavefront, tools::ExactEngine::Mmp}) {
+            const tools::FieldCheckResult f = tools::checkField(geo, source, values, tol, engine);
+            INFO(file << " (" << tools::engineName(engine) << "): worst vertex " << f.worstVertex);
+            CHECK(f.failures == 0);
+        }
         ++fields;
     }
     CHECK(fields == 2);

@@ -129,3 +129,29 @@ TEST_CASE("wavefront: CGAL's golden fields of the smaller shared meshes", "[exac
     }
     CHECK(fields == 6);
 }
+
+TEST_CASE("wavefront: vorogeo exact answers with either engine, the same field", "[exact][wavefront][cli]") {
+    test::TempDir dir;
+    const Mesh mesh = bumpyTorus(40, 20);
+    const std::string path = dir.file("torus.ply");
+    std::string error;
+    REQUIRE(writeMesh(mesh, path, error));
+    const std::string wave = dir.file("wave.csv"), mmp = dir.file("mmp.csv");
+    test::ToolResult r = test::runTool("exact " + test::quote(path) + " --source 5 --out " + test::quote(wave));
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.err, Catch::Contains("(wavefront)"));
+    r = test::runTool("exact " + test::quote(path) + " --source 5 --engine mmp --out " + test::quote(mmp));
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.err, Catch::Contains("(mmp)"));
+    std::ifstream a(wave), b(mmp);
+    size_t values = 0;
+    for (double x, y; a >> x && b >> y; ++values) REQUIRE(x == Approx(y).epsilon(1e-12).margin(1e-15));
+    CHECK(values == mesh.vertexCount());
+    // A distance bound needs MMP's early stop; a misspelt engine is named.
+    r = test::runTool("exact " + test::quote(path) + " --source 5 --max-distance 0.5 --engine wavefront");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Catch::Contains("--engine mmp"));
+    r = test::runTool("exact " + test::quote(path) + " --source 5 --engine vtp");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Catch::Contains("'vtp'"));
+}

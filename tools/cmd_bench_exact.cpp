@@ -1,6 +1,6 @@
-// vorogeo bench-exact: single-source all-destinations time of the exact engine next to
-// plain Dijkstra on the edge graph, in the same run, plus windows and memory; and the
-// time per source on patches of the sizes the baker uses.
+// vorogeo bench-exact: single-source all-destinations time of the two exact engines
+// (wavefront, MMP) next to plain Dijkstra on the edge graph, in the same run, plus windows
+// and memory; and the time per source on patches of the sizes the baker uses.
 #include <cstdio>
 #include <dirent.h>
 #include <algorithm>
@@ -11,6 +11,7 @@
 #include "cli.h"
 #include "generators.h"
 #include "geodesic_exact.h"
+#include "geodesic_wavefront.h"
 #include "timing.h"
 #include "tool_mesh.h"
 
@@ -21,9 +22,9 @@ namespace {
 const char* kUsage =
     "usage: vorogeo bench-exact [MESH ...] [--meshes DIR] [--sources N] [--seed S] [--json]\n"
     "  For each mesh (default: every .ply in ../shared/meshes): median single-source time of\n"
-    "  the exact engine and of Dijkstra on the edge graph over the same N sources (1 thread),\n"
-    "  windows per source, workspace memory, and exact time per source on patches of 200,\n"
-    "  1,000 and 5,000 vertices (setup included).\n";
+    "  the wavefront and MMP exact engines and of Dijkstra on the edge graph over the same N\n"
+    "  sources (1 thread, alternating), windows per source, workspace memory, and each exact\n"
+    "  engine's time per source on patches of 200, 1,000 and 5,000 vertices (setup included).\n";
 
 // Faces of a patch grown breadth-first from `seedFace` until it has `vertices` vertices.
 std::vector<uint32_t> growPatch(const Mesh& mesh, uint32_t seedFace, uint32_t vertices) {
@@ -87,8 +88,9 @@ int runBenchExact(int argc, char** argv) {
     }
     const bool json = args.flag("--json");
     if (!json)
-        std::printf("%-22s %8s %11s %11s %7s %11s %9s %9s %9s %9s\n", "mesh", "V", "exact_ms", "dijkstra_ms", "ratio",
-                    "windows", "ws_MB", "p200_ms", "p1000_ms", "p5000_ms");
+        std::printf("%-16s %8s %9s %9s %9s %7s %7s %10s %10s %7s %7s %16s %16s %16s\n", "mesh", "V", "wave_ms",
+                    "mmp_ms", "dijk_ms", "mmp/wv", "wv/dijk", "wave_win", "mmp_win", "wv_MB", "mmp_MB",
+                    "p200 wv/mmp", "p1000 wv/mmp", "p5000 wv/mmp");
     for (const std::string& path : meshes) {
         Mesh mesh;
         if (!loadMeshForCommand("bench-exact", path, false, mesh)) return 1;
@@ -98,51 +100,71 @@ int runBenchExact(int argc, char** argv) {
 
         const ExactGeodesic geo(mesh);
         ExactWorkspace ws;
-        std::vector<double> dist, exactMs, dijkstraMs;
-        double windows = 0;
-        for (uint32_t s : sources) {  // alternate the two methods so load affects both alike
-            ExactQuery q;
-            q.sources.push_back(GeodesicSource::atVertex(s));
+        WavefrontWorkspace wave;
+        std::vector<double> dist, waveMs, mmpMs, dijkstraMs;
+        double waveWindows = 0, mmpWindows = 0;
+        for (uint32_t s : sources) {  // alternate the methods so load affects them alike
             ExactStats stats;
             Stopwatch a;
-            ws.run(geo, q, dist, &stats);
-            exactMs.push_back(a.seconds() * 1e3);
-            windows += double(stats.windowsCreated);
+            wave.run(geo, {s}, dist, &stats);
+            waveMs.push_back(a.seconds() * 1e3);
+            waveWindows += double(stats.windowsCreated);
+            ExactQuery q;
+            q.sources.push_back(GeodesicSource::atVertex(s));
             Stopwatch b;
+            ws.run(geo, q, dist, &stats);
+            mmpMs.push_back(b.seconds() * 1e3);
+            mmpWindows += double(stats.windowsCreated);
+            Stopwatch c;
             edgeDijkstra(mesh, s, dist);
-            dijkstraMs.push_back(b.seconds() * 1e3);
+            dijkstraMs.push_back(c.seconds() * 1e3);
         }
-        double patchMs[3] = {0, 0, 0};
+        double patchMs[2][3] = {{0, 0, 0}, {0, 0, 0}};
         const uint32_t sizes[3] = {200, 1000, 5000};
         for (int k = 0; k < 3; ++k) {
             if (sizes[k] > mesh.vertexCount()) continue;
-            std::vector<double> times;
+            std::vector<double> times[2];
             for (int rep = 0; rep < 10; ++rep) {  // setup included: patches are built per run in the baker
                 auto faces = growPatch(mesh, uint32_t(rng.uniform() * mesh.faceCount()), sizes[k]);
-                Stopwatch c;
-                ExactGeodesic patch(mesh, faces);
-                ExactQuery q;
-                q.sources.push_back(GeodesicSource::atVertex(uint32_t(rng.uniform() * patch.vertexCount())));
-                ws.run(patch, q, dist);
-                times.push_back(c.seconds() * 1e3);
+                const uint32_t source = uint32_t(rng.uniform() * double(sizes[k]));
+                for (int e = 0; e < 2; ++e) {
+                    Stopwatch c;
+                    ExactGeodesic patch(mesh, faces);
+                    const uint32_t s = std::min(source, patch.vertexCount() - 1);
+                    if (e == 0) {
+                        wave.run(patch, {s}, dist);
+                    } else {
+                        ExactQuery q;
+                        q.sources.push_back(GeodesicSource::atVertex(s));
+                        ws.run(patch, q, dist);
+                    }
+                    times[e].push_back(c.seconds() * 1e3);
+                }
             }
-            patchMs[k] = percentile(times, 50);
+            for (int e = 0; e < 2; ++e) patchMs[e][k] = percentile(times[e], 50);
         }
-        const double e50 = percentile(exactMs, 50), d50 = percentile(dijkstraMs, 50);
-        const double wsMb = double(ws.memoryBytes()) / (1024.0 * 1024.0);
+        const double w50 = percentile(waveMs, 50), m50 = percentile(mmpMs, 50), d50 = percentile(dijkstraMs, 50);
+        const double waveMb = double(wave.memoryBytes()) / (1024.0 * 1024.0);
+        const double mmpMb = double(ws.memoryBytes()) / (1024.0 * 1024.0);
+        const double n = double(sources.size());
         std::string name = path.substr(path.find_last_of('/') + 1);
-        if (json)
+        if (json) {
             std::printf("{\"mesh\":\"%s\",\"vertices\":%u,\"sources\":%zu,\"exact_ssad_p50_ms\":%.3f,"
-                        "\"dijkstra_ssad_p50_ms\":%.3f,\"exact_over_dijkstra\":%.2f,\"windows_per_source\":%.0f,"
-                        "\"workspace_mb\":%.1f,\"peak_rss_mb\":%.1f,\"patch200_ms\":%.3f,\"patch1000_ms\":%.3f,"
-                        "\"patch5000_ms\":%.3f}\n",
-                        name.c_str(), mesh.vertexCount(), sources.size(), e50, d50, e50 / d50,
-                        windows / double(sources.size()), wsMb, peakRssMb(), patchMs[0], patchMs[1], patchMs[2]);
-        else
-        {
-            std::printf("%-22s %8u %11.2f %11.2f %7.1f %11.0f %9.1f", name.c_str(), mesh.vertexCount(), e50, d50,
-                        e50 / d50, windows / double(sources.size()), wsMb);
-            for (double p : patchMs) p > 0 ? std::printf(" %9.3f", p) : std::printf(" %9s", "-");  // mesh too small
+                        "\"mmp_ssad_p50_ms\":%.3f,\"dijkstra_ssad_p50_ms\":%.3f,\"mmp_over_wavefront\":%.2f,"
+                        "\"exact_over_dijkstra\":%.2f,\"windows_per_source\":%.0f,\"mmp_windows_per_source\":%.0f,"
+                        "\"workspace_mb\":%.1f,\"mmp_workspace_mb\":%.1f,\"peak_rss_mb\":%.1f,"
+                        "\"patch200_ms\":%.3f,\"patch1000_ms\":%.3f,\"patch5000_ms\":%.3f,"
+                        "\"mmp_patch200_ms\":%.3f,\"mmp_patch1000_ms\":%.3f,\"mmp_patch5000_ms\":%.3f}\n",
+                        name.c_str(), mesh.vertexCount(), sources.size(), w50, m50, d50, m50 / w50, w50 / d50,
+                        waveWindows / n, mmpWindows / n, waveMb, mmpMb, peakRssMb(), patchMs[0][0], patchMs[0][1],
+                        patchMs[0][2], patchMs[1][0], patchMs[1][1], patchMs[1][2]);
+        } else {
+            std::printf("%-16s %8u %9.2f %9.2f %9.2f %7.2f %7.1f %10.0f %10.0f %7.1f %7.1f", name.c_str(),
+                        mesh.vertexCount(), w50, m50, d50, m50 / w50, w50 / d50, waveWindows / n, mmpWindows / n,
+                        waveMb, mmpMb);
+            for (int k = 0; k < 3; ++k)
+                patchMs[0][k] > 0 ? std::printf(" %7.3f/%-8.3f", patchMs[0][k], patchMs[1][k])
+                                  : std::printf(" %16s", "-");  // mesh too small
             std::printf("\n");
         }
         std::fflush(stdout);

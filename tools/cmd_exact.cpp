@@ -1,5 +1,5 @@
-// vorogeo exact: exact geodesic distances with the MMP engine, and checks against a
-// reference (golden pairs or a one-to-all field).
+// vorogeo exact: exact geodesic distances (the wavefront engine, or MMP), and checks
+// against a reference (golden pairs or a one-to-all field).
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -16,10 +16,12 @@ namespace vorogeo::tools {
 namespace {
 
 const char* kUsage =
-    "usage: vorogeo exact MESH --source V [--target W] [--out field.csv] [--max-distance D]\n"
-    "       vorogeo exact MESH --pairs PAIRS.csv [--json] [--threads N]\n"
-    "       vorogeo exact MESH --source V --field FIELD.csv [--json]\n"
-    "  Exact polyhedral geodesic distances (MMP window propagation).\n"
+    "usage: vorogeo exact MESH --source V [--target W] [--out field.csv] [--max-distance D] [--engine E]\n"
+    "       vorogeo exact MESH --pairs PAIRS.csv [--json] [--threads N] [--engine E]\n"
+    "       vorogeo exact MESH --source V --field FIELD.csv [--json] [--engine E]\n"
+    "  Exact polyhedral geodesic distances by window propagation.\n"
+    "  --engine: wavefront (default: window lists crossing a face at once) or mmp (windows\n"
+    "  one at a time, kept on their edges; --max-distance and a single --target use it).\n"
     "  --pairs: recompute every 'source,target,distance' row and report the relative error\n"
     "  and the single-source time; exits 1 if a pair disagrees beyond 1e-6 relative\n"
     "  (or 1e-9 x bounding-box diagonal near zero). --field: the same for one-to-all values.\n"
@@ -28,6 +30,13 @@ const char* kUsage =
 void printDistance(FILE* out, double d) {
     if (std::isinf(d)) std::fprintf(out, "inf");
     else std::fprintf(out, "%.17g", d);
+}
+
+ExactEngine engineOf(const cli::Args& args) {
+    ExactEngine engine = ExactEngine::Wavefront;
+    if (args.has("--engine") && !parseEngine(args.str("--engine"), engine))
+        throw cli::UsageError("--engine must be wavefront or mmp, not '" + args.str("--engine") + "'");
+    return engine;
 }
 
 int runPairs(const Mesh& mesh, const ExactGeodesic& geo, const cli::Args& args, const Tolerance& tol) {
@@ -40,7 +49,7 @@ int runPairs(const Mesh& mesh, const ExactGeodesic& geo, const cli::Args& args, 
     const int threads = int(args.integer("--threads", 0));
     if (threads < 0) throw cli::UsageError("--threads must be >= 0");
     Stopwatch wall;
-    const PairCheckResult r = checkPairs(geo, pairs, tol, threads);
+    const PairCheckResult r = checkPairs(geo, pairs, tol, threads, engineOf(args));
     const double p50 = percentile(r.sourceSeconds, 50) * 1e3, p90 = percentile(r.sourceSeconds, 90) * 1e3;
     if (args.flag("--json")) {
         std::printf("{\"mesh\":\"%s\",\"vertices\":%u,\"pairs\":%zu,\"sources\":%zu,\"failures\":%zu,"
@@ -76,7 +85,7 @@ int runField(const Mesh& mesh, const ExactGeodesic& geo, uint32_t source, const 
         std::fprintf(stderr, "vorogeo exact: %s\n", error.c_str());
         return 1;
     }
-    const FieldCheckResult r = checkField(geo, source, reference, tol);
+    const FieldCheckResult r = checkField(geo, source, reference, tol, engineOf(args));
     if (args.flag("--json"))
         std::printf("{\"mesh\":\"%s\",\"vertices\":%u,\"source\":%u,\"values\":%zu,\"failures\":%zu,"
                     "\"max_rel_error\":%.3e,\"mean_rel_error\":%.3e,\"max_abs_error\":%.3e,\"ssad_ms\":%.3f}\n",
@@ -96,7 +105,7 @@ int runField(const Mesh& mesh, const ExactGeodesic& geo, uint32_t source, const 
 }  // namespace
 
 int runExact(int argc, char** argv) {
-    cli::Args args(argc, argv, {"--source", "--target", "--out", "--pairs", "--field", "--threads", "--max-distance"},
+    cli::Args args(argc, argv, {"--source", "--target", "--out", "--pairs", "--field", "--threads", "--max-distance", "--engine"},
                    {"--json", "--repair", "--help"});
     if (args.flag("--help")) {
         std::printf("%s", kUsage);
@@ -133,11 +142,19 @@ int runExact(int argc, char** argv) {
             throw cli::UsageError("--target " + args.str("--target") + " is not a vertex of the mesh");
         if (!args.has("--out")) query.targets.push_back(uint32_t(target));
     }
+    // MMP can stop early (a distance bound, one target's value); the wavefront runs to the end.
+    ExactEngine engine = engineOf(args);
+    const bool early = query.maxDistance < kInfinity || !query.targets.empty();
+    if (early && args.has("--engine") && engine == ExactEngine::Wavefront)
+        throw cli::UsageError("--max-distance and --target without --out need --engine mmp");
+    if (early) engine = ExactEngine::Mmp;
     ExactWorkspace ws;
+    WavefrontWorkspace wavefront;
     std::vector<double> dist;
     ExactStats stats;
     Stopwatch clock;
-    ws.run(geo, query, dist, &stats);
+    if (engine == ExactEngine::Mmp) ws.run(geo, query, dist, &stats);
+    else wavefront.run(geo, {uint32_t(source)}, dist, &stats);
     const double ms = clock.seconds() * 1e3;
 
     if (args.has("--out")) {
@@ -164,8 +181,8 @@ int runExact(int argc, char** argv) {
         printDistance(stdout, dist[size_t(target)]);
         std::printf("\n");
     }
-    std::fprintf(stderr, "vorogeo exact: %u vertices, %.2f ms, %llu windows\n", mesh.vertexCount(), ms,
-                 (unsigned long long)stats.windowsCreated);
+    std::fprintf(stderr, "vorogeo exact: %u vertices, %.2f ms, %llu windows (%s)\n", mesh.vertexCount(), ms,
+                 (unsigned long long)stats.windowsCreated, engineName(engine));
     return 0;
 }
 

@@ -37,8 +37,27 @@ struct ErrorAccumulator {
 
 }  // namespace
 
+const char* engineName(ExactEngine engine) { return engine == ExactEngine::Mmp ? "mmp" : "wavefront"; }
+
+bool parseEngine(const std::string& name, ExactEngine& engine) {
+    if (name == "wavefront") engine = ExactEngine::Wavefront;
+    else if (name == "mmp") engine = ExactEngine::Mmp;
+    else return false;
+    return true;
+}
+
+void ExactRunner::run(const ExactGeodesic& geo, uint32_t source, std::vector<double>& distances, ExactStats* stats) {
+    if (engine_ == ExactEngine::Wavefront) {
+        wavefront_.run(geo, {source}, distances, stats);
+        return;
+    }
+    ExactQuery q;
+    q.sources.push_back(GeodesicSource::atVertex(source));
+    mmp_.run(geo, q, distances, stats);
+}
+
 PairCheckResult checkPairs(const ExactGeodesic& geo, const std::vector<DistancePair>& pairs,
-                           const Tolerance& tol, int threads) {
+                           const Tolerance& tol, int threads, ExactEngine engine) {
     std::map<uint32_t, std::vector<size_t>> bySource;
     for (size_t i = 0; i < pairs.size(); ++i) {
         if (pairs[i].source >= geo.vertexCount() || pairs[i].target >= geo.vertexCount())
@@ -53,17 +72,17 @@ PairCheckResult checkPairs(const ExactGeodesic& geo, const std::vector<DistanceP
     std::vector<double> computed(pairs.size());
     std::vector<double> seconds(work.size());
     std::vector<uint64_t> windows(work.size());
-    PerThread<ExactWorkspace> workspaces;
+    PerThread<ExactRunner> runners;
     PerThread<std::vector<double>> fields;
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] {
         parallelFor(work.size(), [&](size_t i) {
-            ExactQuery q;
-            q.sources.push_back(GeodesicSource::atVertex(work[i].first));
             std::vector<double>& dist = fields.local();
             ExactStats stats;
             Stopwatch clock;
-            workspaces.local().run(geo, q, dist, &stats);
+            ExactRunner& runner = runners.local();
+            runner.setEngine(engine);
+            runner.run(geo, work[i].first, dist, &stats);
             seconds[i] = clock.seconds();
             windows[i] = stats.windowsCreated;
             for (size_t p : *work[i].second) computed[p] = dist[pairs[p].target];
@@ -90,16 +109,14 @@ PairCheckResult checkPairs(const ExactGeodesic& geo, const std::vector<DistanceP
 }
 
 FieldCheckResult checkField(const ExactGeodesic& geo, uint32_t source, const std::vector<double>& reference,
-                            const Tolerance& tol) {
+                            const Tolerance& tol, ExactEngine engine) {
     if (reference.size() != geo.vertexCount())
         throw std::invalid_argument("field has " + std::to_string(reference.size()) + " values but the mesh has " +
                                     std::to_string(geo.vertexCount()) + " vertices");
-    ExactWorkspace ws;
-    ExactQuery q;
-    q.sources.push_back(GeodesicSource::atVertex(source));
+    ExactRunner runner(engine);
     std::vector<double> dist;
     Stopwatch clock;
-    ws.run(geo, q, dist);
+    runner.run(geo, source, dist);
     FieldCheckResult r;
     r.seconds = clock.seconds();
     ErrorAccumulator acc;

@@ -2,12 +2,34 @@
 // its single-source runs. Shared by `vorogeo exact` and the tests.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "geodesic_exact.h"
+#include "geodesic_wavefront.h"
 #include "golden.h"
 
 namespace vorogeo::tools {
+
+// Which exact engine answers: both give the exact vertex distances.
+enum class ExactEngine { Wavefront, Mmp };
+const char* engineName(ExactEngine engine);
+// Parses "wavefront" or "mmp"; false for anything else.
+bool parseEngine(const std::string& name, ExactEngine& engine);
+
+// One single-source all-destinations run with the chosen engine (each thread its own object).
+class ExactRunner {
+public:
+    explicit ExactRunner(ExactEngine engine = ExactEngine::Wavefront) : engine_(engine) {}
+    void setEngine(ExactEngine engine) { engine_ = engine; }
+    void run(const ExactGeodesic& geo, uint32_t source, std::vector<double>& distances, ExactStats* stats = nullptr);
+    size_t memoryBytes() const { return engine_ == ExactEngine::Mmp ? mmp_.memoryBytes() : wavefront_.memoryBytes(); }
+
+private:
+    ExactEngine engine_;
+    ExactWorkspace mmp_;
+    WavefrontWorkspace wavefront_;
+};
 
 struct PairCheckResult {
     size_t pairs = 0, sources = 0, failures = 0;
@@ -21,7 +43,7 @@ struct PairCheckResult {
 // One all-destinations run per distinct source, in parallel on `threads` workers
 // (0: all cores). Throws std::invalid_argument for indices outside the mesh.
 PairCheckResult checkPairs(const ExactGeodesic& geo, const std::vector<DistancePair>& pairs,
-                           const Tolerance& tol, int threads);
+                           const Tolerance& tol, int threads, ExactEngine engine = ExactEngine::Wavefront);
 
 struct FieldCheckResult {
     size_t values = 0, failures = 0;
@@ -31,6 +53,6 @@ struct FieldCheckResult {
 };
 // Compares the field of `source` with one value per vertex.
 FieldCheckResult checkField(const ExactGeodesic& geo, uint32_t source, const std::vector<double>& reference,
-                            const Tolerance& tol);
+                            const Tolerance& tol, ExactEngine engine = ExactEngine::Wavefront);
 
 }  // namespace vorogeo::tools

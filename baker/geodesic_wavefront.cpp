@@ -174,33 +174,31 @@ void WavefrontWorkspace::propagateList(int32_t h) {
     const double da = dist[a], db = dist[b];
 
     batch_.clear();
+    double best = kInfinity, bestSplit = 0.0, bestSx = 0.0, bestSy = 0.0;
+    const double tiny = 1e-20 * L;
     while (id != kNil) {
         const Window& w = pool_[id];
         const uint32_t next = w.next;
         ++stats_.windowsPropagated;
+        const double atStart = windowDistance(w.sx, w.sy, w.sigma, w.b0);
+        const double atEnd = windowDistance(w.sx, w.sy, w.sigma, w.b1);
         // A window's distance minus a corner's straight way is monotone along the edge,
         // so a corner that wins at the far end wins on the whole window.
-        if (da + w.b1 < windowDistance(w.sx, w.sy, w.sigma, w.b1) ||
-            db + (L - w.b0) < windowDistance(w.sx, w.sy, w.sigma, w.b0))
+        if (da + w.b1 < atEnd || db + (L - w.b0) < atStart) {
             freeWindow(id);
-        else
-            batch_.push_back(id);
-        id = next;
-    }
-
-    batchSplit_.clear();
-    double best = kInfinity, bestSplit = 0.0, bestSx = 0.0, bestSy = 0.0;
-    const double tiny = 1e-20 * L;
-    for (uint32_t i : batch_) {
-        const Window& w = pool_[i];
-        double split = splitAtApex(w.sx, w.sy, cx, cy), toApex;
-        if (split - w.b0 > tiny && split - w.b1 < -tiny) {
+            id = next;
+            continue;
+        }
+        // The window's way to the apex: straight through it, or round one of its ends.
+        const double at = splitAtApex(w.sx, w.sy, cx, cy);
+        double split = at, toApex;
+        if (at - w.b0 > tiny && at - w.b1 < -tiny) {
             toApex = w.sigma + len2(cx - w.sx, cy - w.sy);
-        } else if (split - w.b0 <= tiny) {
-            toApex = windowDistance(w.sx, w.sy, w.sigma, w.b0) + len2(cx - w.b0, cy);
+        } else if (at - w.b0 <= tiny) {
+            toApex = atStart + len2(cx - w.b0, cy);
             split = w.b0;
         } else {
-            toApex = windowDistance(w.sx, w.sy, w.sigma, w.b1) + len2(cx - w.b1, cy);
+            toApex = atEnd + len2(cx - w.b1, cy);
             split = w.b1;
         }
         if (toApex < best) {
@@ -209,7 +207,8 @@ void WavefrontWorkspace::propagateList(int32_t h) {
             bestSx = w.sx;
             bestSy = w.sy;
         }
-        batchSplit_.push_back(split);
+        batch_.push_back(Pending{id, split, at});
+        id = next;
     }
     if (batch_.empty()) return;
     improve(c, best);
@@ -220,11 +219,11 @@ void WavefrontWorkspace::propagateList(int32_t h) {
     const double ulx = cx / ll, uly = cy / ll;
     const double urx = (L - cx) / lr, ury = -cy / lr;
     const double side = 1e-8 * L;
-    for (size_t i = 0; i < batch_.size(); ++i) {
-        const Window w = pool_[batch_[i]];
-        freeWindow(batch_[i]);
+    for (const Pending& pending : batch_) {
+        const Window w = pool_[pending.id];
+        freeWindow(pending.id);
         bool toLeft = true, toRight = true;
-        const double split = batchSplit_[i];
+        const double split = pending.split, at = pending.at;
         // Rays of w that pass the apex on the far side of the best window's path to it
         // cross that path, which is shorter up to the crossing: they are not shortest.
         if (split < bestSplit - side) {
@@ -232,12 +231,12 @@ void WavefrontWorkspace::propagateList(int32_t h) {
         } else if (split > bestSplit + side) {
             if (w.b0 > bestSplit || crossBeforeEdge(bestSx, bestSy, bestSplit, w.sx, w.sy, w.b0)) toLeft = false;
         }
-        const double at = splitAtApex(w.sx, w.sy, cx, cy);
         if (toLeft && gl >= 0) {
             const double lo = w.b0, hi = std::min(w.b1, at);
             if (hi > lo) {
                 const double t0 = std::max(0.0, meetLine(0.0, 0.0, ulx, uly, w.sx, w.sy, lo));
-                const double t1 = std::min(ll, meetLine(0.0, 0.0, ulx, uly, w.sx, w.sy, hi));
+                // The ray through the apex meets the edge at its end: no division for it.
+                const double t1 = hi == at ? ll : std::min(ll, meetLine(0.0, 0.0, ulx, uly, w.sx, w.sy, hi));
                 if (t0 < t1) {
                     const uint32_t n = allocWindow();
                     pool_[n] = Window{t0, t1, ulx * w.sx + uly * w.sy, cross2(ulx, uly, w.sx, w.sy), w.sigma, kNil};
@@ -248,7 +247,7 @@ void WavefrontWorkspace::propagateList(int32_t h) {
         if (toRight && gr >= 0) {
             const double lo = std::max(w.b0, at), hi = w.b1;
             if (hi > lo) {
-                const double t0 = std::max(0.0, meetLine(cx, cy, urx, ury, w.sx, w.sy, lo));
+                const double t0 = lo == at ? 0.0 : std::max(0.0, meetLine(cx, cy, urx, ury, w.sx, w.sy, lo));
                 const double t1 = std::min(lr, meetLine(cx, cy, urx, ury, w.sx, w.sy, hi));
                 if (t0 < t1) {
                     const double rx = w.sx - cx, ry = w.sy - cy;
@@ -330,8 +329,8 @@ void WavefrontWorkspace::run(const ExactGeodesic& geo, const std::vector<uint32_
 size_t WavefrontWorkspace::memoryBytes() const {
     return pool_.capacity() * sizeof(Window) +
            (freeList_.capacity() + listHead_.capacity() + listTail_.capacity() + heap_.capacity() +
-            heapPos_.capacity() + batch_.capacity()) * sizeof(uint32_t) +
-           fifo_.capacity() * sizeof(int32_t) + state_.capacity() + batchSplit_.capacity() * sizeof(double);
+            heapPos_.capacity()) * sizeof(uint32_t) +
+           fifo_.capacity() * sizeof(int32_t) + state_.capacity() + batch_.capacity() * sizeof(Pending);
 }
 
 std::vector<double> wavefrontDistancesFrom(const ExactGeodesic& geo, uint32_t source) {

@@ -61,8 +61,12 @@ private:
     size_t fifoHead_ = 0;
     std::vector<uint8_t> state_;
     std::vector<uint32_t> heap_, heapPos_;
-    std::vector<uint32_t> batch_;  // the windows of the list being propagated
-    std::vector<double> batchSplit_;
+    struct Pending {  // a window of the list crossing its face
+        uint32_t id;
+        double split;  // where its way to the apex leaves the edge (clamped to the window)
+        double at;     // where the straight line from its source to the apex meets the edge
+    };
+    std::vector<Pending> batch_;
     uint64_t alive_ = 0;
     ExactStats stats_;
 };

@@ -8,6 +8,7 @@
 
 
 #include "geodesic_exact.h"
+#include "geodesic_wavefront.h"
 #include "parallel.h"
 
 namespace vorogeo {
@@ -48,7 +49,9 @@ void orderPatch(const Patch& patch, const std::vector<uint8_t>& sharing, PatchMa
         if (sharing[v] < 2) out.vertices.push_back(v);
 }
 
-// One layer: domains, then one exact run per matrix row (targets: the later rows).
+// One layer: domains, then one exact run per matrix row (read at the later rows). The
+// wavefront engine runs each row to the end of its small domain and still beats MMP
+// stopping at the last target (BENCHMARKS.md).
 void computeLayer(const Mesh& mesh, const std::vector<Patch>& patches, const std::vector<uint32_t>& facePatch,
                   bool nodesOnly, const PatchGeodesicsOptions& options, const char* stage,
                   const StageProgress& progress, std::vector<PatchMatrix>& out, uint64_t& runs) {
@@ -76,8 +79,7 @@ void computeLayer(const Mesh& mesh, const std::vector<Patch>& patches, const std
     runs += jobs.size();
 
     struct Scratch {
-        ExactWorkspace workspace;
-        ExactQuery query;
+        WavefrontWorkspace workspace;
         std::vector<double> dist;
     };
     PerThread<Scratch> scratch;
@@ -89,12 +91,9 @@ void computeLayer(const Mesh& mesh, const std::vector<Patch>& patches, const std
         PatchMatrix& m = out[job.patch];
         const ExactGeodesic& geo = *domains[job.patch];
         Scratch& s = scratch.local();
-        s.query.sources.assign(1, GeodesicSource::atVertex(uint32_t(geo.localVertex(m.vertices[job.row]))));
-        s.query.targets.clear();
-        for (uint32_t j = job.row + 1; j < m.rows; ++j) s.query.targets.push_back(uint32_t(geo.localVertex(m.vertices[j])));
-        s.workspace.run(geo, s.query, s.dist);
+        s.workspace.run(geo, {uint32_t(geo.localVertex(m.vertices[job.row]))}, s.dist);
         for (uint32_t j = job.row + 1; j < m.rows; ++j)
-            m.upper[upperIndex(m.rows, job.row, j)] = s.dist[s.query.targets[j - job.row - 1]];
+            m.upper[upperIndex(m.rows, job.row, j)] = s.dist[size_t(geo.localVertex(m.vertices[j]))];
         const size_t n = ++done;
         if (progress && (n % step == 0 || n == jobs.size())) {
             std::lock_guard<std::mutex> lock(progressMutex);

@@ -55,6 +55,7 @@ uint32_t WavefrontWorkspace::allocWindow() {
         return id;
     }
     pool_.push_back(Window{});
+    next_.push_back(kNil);
     return uint32_t(pool_.size() - 1);
 }
 
@@ -64,9 +65,9 @@ void WavefrontWorkspace::freeWindow(uint32_t id) {
 }
 
 void WavefrontWorkspace::append(int32_t h, uint32_t id) {
-    pool_[id].next = kNil;
+    next_[id] = kNil;
     if (listHead_[h] == kNil) listHead_[h] = id;
-    else pool_[listTail_[h]].next = id;
+    else next_[listTail_[h]] = id;
     listTail_[h] = id;
 }
 
@@ -148,7 +149,7 @@ void WavefrontWorkspace::emitFromVertex(uint32_t v, bool insideArea) {
             const double lk = geo_->edgeLength_[geo_->edgeOf_[k]];
             const auto& fr = geo_->frame_[k];  // v is k's apex; g is k reversed
             const uint32_t id = allocWindow();
-            pool_[id] = Window{0.0, lk, lk - fr.apexX, -fr.apexY, dv, kNil};
+            pool_[id] = Window{0.0, lk, lk - fr.apexX, -fr.apexY, dv};
             append(g, id);
             if (insideArea && (state_[m.tail(g)] == kInside || state_[m.head(g)] == kInside)) pushList(g);
         }
@@ -180,9 +181,15 @@ void WavefrontWorkspace::propagateList(int32_t h) {
     batch_.clear();
     double best = kInfinity, bestSplit = 0.0, bestSx = 0.0, bestSy = 0.0;
     const double tiny = 1e-20 * L;
-    while (id != kNil) {
+    // The links live apart from the windows, so the list is walked in cache and the
+    // windows' own lines are all requested before the first is needed.
+    ids_.clear();
+    for (; id != kNil; id = next_[id]) {
+        __builtin_prefetch(&pool_[id]);
+        ids_.push_back(id);
+    }
+    for (const uint32_t id : ids_) {
         const Window& w = pool_[id];
-        const uint32_t next = w.next;
         ++stats_.windowsPropagated;
         // A window's distance minus a corner's straight way is monotone along the edge,
         // so a corner that wins at the far end wins on the whole window. Compared
@@ -190,7 +197,6 @@ void WavefrontWorkspace::propagateList(int32_t h) {
         if (cornerWins(da + w.b1 - w.sigma, w.b1 - w.sx, w.sy) ||
             cornerWins(db + (L - w.b0) - w.sigma, w.b0 - w.sx, w.sy)) {
             freeWindow(id);
-            id = next;
             continue;
         }
         // The window's way to the apex: straight through it, or round one of its ends.
@@ -212,7 +218,6 @@ void WavefrontWorkspace::propagateList(int32_t h) {
             bestSy = w.sy;
         }
         batch_.push_back(Pending{id, split, at});
-        id = next;
     }
     if (batch_.empty()) return;
     improve(c, best);
@@ -243,7 +248,7 @@ void WavefrontWorkspace::propagateList(int32_t h) {
                 const double t1 = hi == at ? ll : std::min(ll, meetLine(0.0, 0.0, ulx, uly, w.sx, w.sy, hi));
                 if (t0 < t1) {
                     const uint32_t n = allocWindow();
-                    pool_[n] = Window{t0, t1, ulx * w.sx + uly * w.sy, cross2(ulx, uly, w.sx, w.sy), w.sigma, kNil};
+                    pool_[n] = Window{t0, t1, ulx * w.sx + uly * w.sy, cross2(ulx, uly, w.sx, w.sy), w.sigma};
                     append(gl, n);
                 }
             }
@@ -256,7 +261,7 @@ void WavefrontWorkspace::propagateList(int32_t h) {
                 if (t0 < t1) {
                     const double rx = w.sx - cx, ry = w.sy - cy;
                     const uint32_t n = allocWindow();
-                    pool_[n] = Window{t0, t1, urx * rx + ury * ry, cross2(urx, ury, rx, ry), w.sigma, kNil};
+                    pool_[n] = Window{t0, t1, urx * rx + ury * ry, cross2(urx, ury, rx, ry), w.sigma};
                     append(gr, n);
                 }
             }
@@ -304,6 +309,7 @@ void WavefrontWorkspace::reset(const ExactGeodesic& geo) {
     geo_ = &geo;
     const Mesh& m = *geo.mesh_;
     pool_.clear();
+    next_.clear();
     freeList_.clear();
     listHead_.assign(m.halfedgeCount(), kNil);
     listTail_.assign(m.halfedgeCount(), kNil);
@@ -332,7 +338,7 @@ void WavefrontWorkspace::run(const ExactGeodesic& geo, const std::vector<uint32_
 
 size_t WavefrontWorkspace::memoryBytes() const {
     return pool_.capacity() * sizeof(Window) +
-           (freeList_.capacity() + listHead_.capacity() + listTail_.capacity() + heap_.capacity() +
+           (next_.capacity() + ids_.capacity() + freeList_.capacity() + listHead_.capacity() + listTail_.capacity() + heap_.capacity() +
             heapPos_.capacity()) * sizeof(uint32_t) +
            fifo_.capacity() * sizeof(int32_t) + state_.capacity() + batch_.capacity() * sizeof(Pending);
 }

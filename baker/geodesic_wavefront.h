@@ -35,7 +35,6 @@ private:
         double b0, b1;  // extent along the half-edge, from its tail
         double sx, sy;  // (pseudo-)source in the half-edge's frame (below it: sy <= 0)
         double sigma;   // distance from the real source to the pseudo-source
-        uint32_t next;  // next window of the same list
     };
     enum : uint8_t { kOutside = 0, kFront = 1, kInside = 2 };
 
@@ -55,6 +54,8 @@ private:
     const ExactGeodesic* geo_ = nullptr;
     std::vector<double>* dist_ = nullptr;
     std::vector<Window> pool_;
+    std::vector<uint32_t> next_;  // per window: the next of its list
+    std::vector<uint32_t> ids_;   // the list being propagated
     std::vector<uint32_t> freeList_;
     std::vector<uint32_t> listHead_, listTail_;  // per half-edge
     std::vector<int32_t> fifo_;                  // half-edges whose lists wait to cross their face

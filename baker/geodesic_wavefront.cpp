@@ -45,30 +45,33 @@ inline double splitAtApex(double sx, double sy, double cx, double cy) {
 
 }  // namespace
 
-uint32_t WavefrontWorkspace::allocWindow() {
+// A list is a chain of blocks of windows, so its windows lie side by side in memory: the
+// walk follows one link per block and the hardware prefetches within it.
+uint32_t WavefrontWorkspace::allocBlock() {
+    if (!freeBlocks_.empty()) {
+        const uint32_t id = freeBlocks_.back();
+        freeBlocks_.pop_back();
+        return id;
+    }
+    blocks_.emplace_back();
+    return uint32_t(blocks_.size() - 1);
+}
+
+void WavefrontWorkspace::append(int32_t h, const Window& w) {
     ++alive_;
     ++stats_.windowsCreated;
     stats_.peakWindows = std::max(stats_.peakWindows, alive_);
-    if (!freeList_.empty()) {
-        const uint32_t id = freeList_.back();
-        freeList_.pop_back();
-        return id;
+    uint32_t t = listTail_[h];
+    if (t == kNil || blocks_[t].count == kBlockWindows) {
+        const uint32_t fresh = allocBlock();
+        blocks_[fresh].count = 0;
+        blocks_[fresh].next = kNil;
+        if (t == kNil) listHead_[h] = fresh;
+        else blocks_[t].next = fresh;
+        listTail_[h] = t = fresh;
     }
-    pool_.push_back(Window{});
-    next_.push_back(kNil);
-    return uint32_t(pool_.size() - 1);
-}
-
-void WavefrontWorkspace::freeWindow(uint32_t id) {
-    --alive_;
-    freeList_.push_back(id);
-}
-
-void WavefrontWorkspace::append(int32_t h, uint32_t id) {
-    next_[id] = kNil;
-    if (listHead_[h] == kNil) listHead_[h] = id;
-    else next_[listTail_[h]] = id;
-    listTail_[h] = id;
+    Block& block = blocks_[t];
+    block.windows[block.count++] = w;
 }
 
 void WavefrontWorkspace::pushList(int32_t h) {
@@ -148,9 +151,7 @@ void WavefrontWorkspace::emitFromVertex(uint32_t v, bool insideArea) {
         if (g >= 0) {
             const double lk = geo_->edgeLength_[geo_->edgeOf_[k]];
             const auto& fr = geo_->frame_[k];  // v is k's apex; g is k reversed
-            const uint32_t id = allocWindow();
-            pool_[id] = Window{0.0, lk, lk - fr.apexX, -fr.apexY, dv};
-            append(g, id);
+            append(g, Window{0.0, lk, lk - fr.apexX, -fr.apexY, dv});
             if (insideArea && (state_[m.tail(g)] == kInside || state_[m.head(g)] == kInside)) pushList(g);
         }
         h = m.nextAroundVertex(h);
@@ -168,8 +169,8 @@ void WavefrontWorkspace::emitFromVertex(uint32_t v, bool insideArea) {
 // and hands each survivor's rays to the face's other two edges, one side only unless it
 // is the window through which the apex is reached (one angle, two sides).
 void WavefrontWorkspace::propagateList(int32_t h) {
-    uint32_t id = listHead_[h];
-    if (id == kNil) return;
+    uint32_t block = listHead_[h];
+    if (block == kNil) return;
     listHead_[h] = listTail_[h] = kNil;
     const Mesh& m = *geo_->mesh_;
     const std::vector<double>& dist = *dist_;
@@ -181,43 +182,43 @@ void WavefrontWorkspace::propagateList(int32_t h) {
     batch_.clear();
     double best = kInfinity, bestSplit = 0.0, bestSx = 0.0, bestSy = 0.0;
     const double tiny = 1e-20 * L;
-    // The links live apart from the windows, so the list is walked in cache and the
-    // windows' own lines are all requested before the first is needed.
-    ids_.clear();
-    for (; id != kNil; id = next_[id]) {
-        __builtin_prefetch(&pool_[id]);
-        ids_.push_back(id);
-    }
-    for (const uint32_t id : ids_) {
-        const Window& w = pool_[id];
-        ++stats_.windowsPropagated;
-        // A window's distance minus a corner's straight way is monotone along the edge,
-        // so a corner that wins at the far end wins on the whole window. Compared
-        // squared: no square root for the ~97% of windows that survive.
-        if (cornerWins(da + w.b1 - w.sigma, w.b1 - w.sx, w.sy) ||
-            cornerWins(db + (L - w.b0) - w.sigma, w.b0 - w.sx, w.sy)) {
-            freeWindow(id);
-            continue;
+    // Each block is copied out and freed at once, so the children reuse warm blocks.
+    while (block != kNil) {
+        const Block& blk = blocks_[block];
+        const uint32_t count = blk.count, nextBlock = blk.next;
+        if (nextBlock != kNil) __builtin_prefetch(&blocks_[nextBlock]);
+        for (uint32_t k = 0; k < count; ++k) {
+            const Window& w = blk.windows[k];
+            ++stats_.windowsPropagated;
+            --alive_;
+            // A window's distance minus a corner's straight way is monotone along the edge,
+            // so a corner that wins at the far end wins on the whole window. Compared
+            // squared: no square root for the ~97% of windows that survive.
+            if (cornerWins(da + w.b1 - w.sigma, w.b1 - w.sx, w.sy) ||
+                cornerWins(db + (L - w.b0) - w.sigma, w.b0 - w.sx, w.sy))
+                continue;
+            // The window's way to the apex: straight through it, or round one of its ends.
+            const double at = splitAtApex(w.sx, w.sy, cx, cy);
+            double split = at, toApex;
+            if (at - w.b0 > tiny && at - w.b1 < -tiny) {
+                toApex = w.sigma + len2(cx - w.sx, cy - w.sy);
+            } else if (at - w.b0 <= tiny) {
+                toApex = windowDistance(w.sx, w.sy, w.sigma, w.b0) + len2(cx - w.b0, cy);
+                split = w.b0;
+            } else {
+                toApex = windowDistance(w.sx, w.sy, w.sigma, w.b1) + len2(cx - w.b1, cy);
+                split = w.b1;
+            }
+            if (toApex < best) {
+                best = toApex;
+                bestSplit = split;
+                bestSx = w.sx;
+                bestSy = w.sy;
+            }
+            batch_.push_back(Pending{w, split, at});
         }
-        // The window's way to the apex: straight through it, or round one of its ends.
-        const double at = splitAtApex(w.sx, w.sy, cx, cy);
-        double split = at, toApex;
-        if (at - w.b0 > tiny && at - w.b1 < -tiny) {
-            toApex = w.sigma + len2(cx - w.sx, cy - w.sy);
-        } else if (at - w.b0 <= tiny) {
-            toApex = windowDistance(w.sx, w.sy, w.sigma, w.b0) + len2(cx - w.b0, cy);
-            split = w.b0;
-        } else {
-            toApex = windowDistance(w.sx, w.sy, w.sigma, w.b1) + len2(cx - w.b1, cy);
-            split = w.b1;
-        }
-        if (toApex < best) {
-            best = toApex;
-            bestSplit = split;
-            bestSx = w.sx;
-            bestSy = w.sy;
-        }
-        batch_.push_back(Pending{id, split, at});
+        freeBlocks_.push_back(block);
+        block = nextBlock;
     }
     if (batch_.empty()) return;
     improve(c, best);
@@ -229,8 +230,7 @@ void WavefrontWorkspace::propagateList(int32_t h) {
     const double urx = (L - cx) / lr, ury = -cy / lr;
     const double side = 1e-8 * L;
     for (const Pending& pending : batch_) {
-        const Window w = pool_[pending.id];
-        freeWindow(pending.id);
+        const Window& w = pending.window;
         bool toLeft = true, toRight = true;
         const double split = pending.split, at = pending.at;
         // Rays of w that pass the apex on the far side of the best window's path to it
@@ -247,9 +247,7 @@ void WavefrontWorkspace::propagateList(int32_t h) {
                 // The ray through the apex meets the edge at its end: no division for it.
                 const double t1 = hi == at ? ll : std::min(ll, meetLine(0.0, 0.0, ulx, uly, w.sx, w.sy, hi));
                 if (t0 < t1) {
-                    const uint32_t n = allocWindow();
-                    pool_[n] = Window{t0, t1, ulx * w.sx + uly * w.sy, cross2(ulx, uly, w.sx, w.sy), w.sigma};
-                    append(gl, n);
+                    append(gl, Window{t0, t1, ulx * w.sx + uly * w.sy, cross2(ulx, uly, w.sx, w.sy), w.sigma});
                 }
             }
         }
@@ -260,9 +258,7 @@ void WavefrontWorkspace::propagateList(int32_t h) {
                 const double t1 = std::min(lr, meetLine(cx, cy, urx, ury, w.sx, w.sy, hi));
                 if (t0 < t1) {
                     const double rx = w.sx - cx, ry = w.sy - cy;
-                    const uint32_t n = allocWindow();
-                    pool_[n] = Window{t0, t1, urx * rx + ury * ry, cross2(urx, ury, rx, ry), w.sigma};
-                    append(gr, n);
+                    append(gr, Window{t0, t1, urx * rx + ury * ry, cross2(urx, ury, rx, ry), w.sigma});
                 }
             }
         }
@@ -308,9 +304,8 @@ void WavefrontWorkspace::popVertex(uint32_t v) {
 void WavefrontWorkspace::reset(const ExactGeodesic& geo) {
     geo_ = &geo;
     const Mesh& m = *geo.mesh_;
-    pool_.clear();
-    next_.clear();
-    freeList_.clear();
+    blocks_.clear();
+    freeBlocks_.clear();
     listHead_.assign(m.halfedgeCount(), kNil);
     listTail_.assign(m.halfedgeCount(), kNil);
     fifo_.clear();
@@ -337,8 +332,8 @@ void WavefrontWorkspace::run(const ExactGeodesic& geo, const std::vector<uint32_
 }
 
 size_t WavefrontWorkspace::memoryBytes() const {
-    return pool_.capacity() * sizeof(Window) +
-           (next_.capacity() + ids_.capacity() + freeList_.capacity() + listHead_.capacity() + listTail_.capacity() + heap_.capacity() +
+    return blocks_.capacity() * sizeof(Block) +
+           (freeBlocks_.capacity() + listHead_.capacity() + listTail_.capacity() + heap_.capacity() +
             heapPos_.capacity()) * sizeof(uint32_t) +
            fifo_.capacity() * sizeof(int32_t) + state_.capacity() + batch_.capacity() * sizeof(Pending);
 }

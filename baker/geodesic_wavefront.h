@@ -39,9 +39,8 @@ private:
     enum : uint8_t { kOutside = 0, kFront = 1, kInside = 2 };
 
     void reset(const ExactGeodesic& geo);
-    uint32_t allocWindow();
-    void freeWindow(uint32_t id);
-    void append(int32_t h, uint32_t id);
+    uint32_t allocBlock();
+    void append(int32_t h, const Window& w);
     void pushList(int32_t h);
     void improve(uint32_t v, double d);
     void emitFromVertex(uint32_t v, bool insideArea);
@@ -53,17 +52,20 @@ private:
 
     const ExactGeodesic* geo_ = nullptr;
     std::vector<double>* dist_ = nullptr;
-    std::vector<Window> pool_;
-    std::vector<uint32_t> next_;  // per window: the next of its list
-    std::vector<uint32_t> ids_;   // the list being propagated
-    std::vector<uint32_t> freeList_;
-    std::vector<uint32_t> listHead_, listTail_;  // per half-edge
+    static constexpr uint32_t kBlockWindows = 8;
+    struct Block {
+        Window windows[kBlockWindows];
+        uint32_t count, next;  // windows used; the list's next block
+    };
+    std::vector<Block> blocks_;
+    std::vector<uint32_t> freeBlocks_;
+    std::vector<uint32_t> listHead_, listTail_;  // per half-edge: first and last block
     std::vector<int32_t> fifo_;                  // half-edges whose lists wait to cross their face
     size_t fifoHead_ = 0;
     std::vector<uint8_t> state_;
     std::vector<uint32_t> heap_, heapPos_;
     struct Pending {  // a window of the list crossing its face
-        uint32_t id;
+        Window window;
         double split;  // where its way to the apex leaves the edge (clamped to the window)
         double at;     // where the straight line from its source to the apex meets the edge
     };

@@ -1,6 +1,5 @@
 #include "geodesic_exact.h"
 #include "window_math.h"
-#include "parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -679,21 +678,6 @@ std::vector<double> exactDistancesFrom(const Mesh& mesh, uint32_t source) {
     std::vector<double> d;
     ws.run(geo, q, d);
     return d;
-}
-
-std::vector<std::vector<double>> exactDistancesBatch(const ExactGeodesic& geo,
-                                                     const std::vector<uint32_t>& sources,
-                                                     double maxDistance) {
-    std::vector<std::vector<double>> out(sources.size());
-    PerThread<ExactWorkspace> workspaces;
-    parallelFor(sources.size(), [&](size_t i) {
-        ExactWorkspace& ws = workspaces.local();
-        ExactQuery q;
-        q.sources.push_back(GeodesicSource::atVertex(sources[i]));
-        q.maxDistance = maxDistance;
-        ws.run(geo, q, out[i]);
-    });
-    return out;
 }
 
 void edgeDijkstra(const Mesh& mesh, uint32_t source, std::vector<double>& distances, int64_t target) {

@@ -179,11 +179,6 @@ private:
 // unreachable): a one-off run with its own workspace.
 std::vector<double> exactDistancesFrom(const Mesh& mesh, uint32_t source);
 
-// Runs independent single-source problems in parallel (TBB), one workspace per worker.
-// Returns one distance array per source vertex.
-std::vector<std::vector<double>> exactDistancesBatch(const ExactGeodesic& geo,
-                                                     const std::vector<uint32_t>& sources,
-                                                     double maxDistance = kInfinity);
 
 // Shortest paths along mesh edges (Dijkstra): the fast, inexact baseline.
 // Stops early once `target` (if >= 0) is settled.

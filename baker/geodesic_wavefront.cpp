@@ -1,4 +1,5 @@
 #include "geodesic_wavefront.h"
+#include "parallel.h"
 #include "window_math.h"
 
 #include <algorithm>
@@ -140,6 +141,7 @@ void WavefrontWorkspace::improve(uint32_t v, double d) {
 void WavefrontWorkspace::emitFromVertex(uint32_t v, bool insideArea) {
     const Mesh& m = *geo_->mesh_;
     const double dv = (*dist_)[v];
+    if (dv > maxDistance_) return;  // everything it could give lies beyond the bound
     ++stats_.pseudoSources;
     const int32_t start = m.vertexOut[v];
     if (start < 0) return;
@@ -196,6 +198,11 @@ void WavefrontWorkspace::propagateList(int32_t h) {
             // squared: no square root for the ~97% of windows that survive.
             if (cornerWins(da + w.b1 - w.sigma, w.b1 - w.sx, w.sy) ||
                 cornerWins(db + (L - w.b0) - w.sigma, w.b0 - w.sx, w.sy))
+                continue;
+            // Distances only grow along a window's rays: one that starts beyond the bound
+            // gives nothing within it.
+            if (maxDistance_ < kInfinity &&
+                windowDistance(w.sx, w.sy, w.sigma, std::min(std::max(w.sx, w.b0), w.b1)) > maxDistance_)
                 continue;
             // The window's way to the apex: straight through it, or round one of its ends.
             const double at = splitAtApex(w.sx, w.sy, cx, cy);
@@ -318,15 +325,20 @@ void WavefrontWorkspace::reset(const ExactGeodesic& geo) {
 }
 
 void WavefrontWorkspace::run(const ExactGeodesic& geo, const std::vector<uint32_t>& sources,
-                             std::vector<double>& distances, ExactStats* stats) {
+                             std::vector<double>& distances, ExactStats* stats, double maxDistance) {
     const uint32_t nv = geo.vertexCount();
     for (uint32_t s : sources)
         if (s >= nv) throw std::invalid_argument("source vertex " + std::to_string(s) + " out of range");
+    if (!(maxDistance >= 0)) throw std::invalid_argument("maximum distance must be >= 0");
     reset(geo);
+    maxDistance_ = maxDistance;
     distances.assign(nv, kInfinity);
     dist_ = &distances;
     for (uint32_t s : sources) improve(s, 0.0);
     while (!heap_.empty()) popVertex(heapPop());
+    if (maxDistance < kInfinity)
+        for (double& d : distances)
+            if (d > maxDistance) d = kInfinity;
     if (stats) *stats = stats_;
     dist_ = nullptr;
 }
@@ -343,6 +355,15 @@ std::vector<double> wavefrontDistancesFrom(const ExactGeodesic& geo, uint32_t so
     std::vector<double> d;
     ws.run(geo, {source}, d);
     return d;
+}
+
+std::vector<std::vector<double>> exactDistancesBatch(const ExactGeodesic& geo,
+                                                     const std::vector<uint32_t>& sources,
+                                                     double maxDistance) {
+    std::vector<std::vector<double>> out(sources.size());
+    PerThread<WavefrontWorkspace> workspaces;
+    parallelFor(sources.size(), [&](size_t i) { workspaces.local().run(geo, {sources[i]}, out[i], nullptr, maxDistance); });
+    return out;
 }
 
 }  // namespace vorogeo

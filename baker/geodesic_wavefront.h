@@ -23,10 +23,12 @@ namespace vorogeo {
 
 class WavefrontWorkspace {
 public:
-    // Distances from the source vertices to every domain vertex (+inf if unreachable).
-    // Throws std::invalid_argument on an out-of-range source.
+    // Distances from the source vertices to every domain vertex (+inf if unreachable or
+    // beyond maxDistance: windows that start beyond it are dropped, so a bounded run does
+    // only the work inside the bound). Throws std::invalid_argument on an out-of-range
+    // source or a negative bound.
     void run(const ExactGeodesic& geo, const std::vector<uint32_t>& sources, std::vector<double>& distances,
-             ExactStats* stats = nullptr);
+             ExactStats* stats = nullptr, double maxDistance = kInfinity);
 
     size_t memoryBytes() const;
 
@@ -71,10 +73,17 @@ private:
     };
     std::vector<Pending> batch_;
     uint64_t alive_ = 0;
+    double maxDistance_ = kInfinity;
     ExactStats stats_;
 };
 
 // One source vertex to every vertex of `geo`'s domain with the wavefront engine.
 std::vector<double> wavefrontDistancesFrom(const ExactGeodesic& geo, uint32_t source);
+
+// Runs independent single-source problems in parallel (TBB), one workspace per worker,
+// with the wavefront engine. Returns one distance array per source vertex.
+std::vector<std::vector<double>> exactDistancesBatch(const ExactGeodesic& geo,
+                                                     const std::vector<uint32_t>& sources,
+                                                     double maxDistance = kInfinity);
 
 }  // namespace vorogeo

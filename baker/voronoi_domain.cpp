@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "geodesic_wavefront.h"
 #include "patch_topology.h"
 #include "parallel.h"
 
@@ -160,17 +161,14 @@ void applySeedRuns(const ExactGeodesic& geo, const std::vector<uint32_t>& seeds,
                    std::vector<double>& D, std::vector<uint32_t>& label) {
     std::vector<std::vector<std::pair<uint32_t, double>>> reached(runs.size());
     struct Scratch {  // reused between runs: a fresh distance array per run costs more than the run
-        ExactWorkspace workspace;
+        WavefrontWorkspace workspace;
         std::vector<double> distances;
     };
     PerThread<Scratch> scratch;
     parallelFor(runs.size(), [&](size_t i) {
-        ExactQuery q;
-        q.sources.push_back(GeodesicSource::atVertex(seeds[runs[i].seed]));
-        q.maxDistance = runs[i].bound;
         Scratch& local = scratch.local();
         const std::vector<double>& d = local.distances;
-        local.workspace.run(geo, q, local.distances);
+        local.workspace.run(geo, {seeds[runs[i].seed]}, local.distances, nullptr, runs[i].bound);
         for (uint32_t v = 0; v < d.size(); ++v)
             if (d[v] <= D[v] && d[v] < kInfinity) reached[i].push_back({v, d[v]});
     });

@@ -12,6 +12,7 @@
 
 #include "generators.h"
 #include "geodesic_exact.h"
+#include "geodesic_wavefront.h"
 #include "mesh_io.h"
 #include "mesh_stats.h"
 #include "partition.h"

@@ -155,3 +155,24 @@ TEST_CASE("wavefront: vorogeo exact answers with either engine, the same field",
     CHECK(r.status == 2);
     CHECK_THAT(r.err, Catch::Contains("'vtp'"));
 }
+
+TEST_CASE("wavefront: a distance bound drops the work beyond it, not the distances within", "[exact][wavefront]") {
+    for (const Mesh& m : {bumpyTorus(60, 30), gridWithHoles(16, 5), noisy(icosphere(3), 0.02, 5)}) {
+        ExactGeodesic geo(m);
+        WavefrontWorkspace ws;
+        std::vector<double> all, bounded;
+        ExactStats fullStats, boundedStats;
+        ws.run(geo, {11}, all, &fullStats);
+        double far = 0;
+        for (double d : all)
+            if (std::isfinite(d)) far = std::max(far, d);
+        const double bound = 0.4 * far;
+        ws.run(geo, {11}, bounded, &boundedStats, bound);
+        for (uint32_t v = 0; v < m.vertexCount(); ++v) {
+            if (all[v] <= bound) REQUIRE(bounded[v] == all[v]);
+            else REQUIRE(std::isinf(bounded[v]));
+        }
+        CHECK(boundedStats.windowsPropagated < fullStats.windowsPropagated);
+        CHECK_THROWS_AS(ws.run(geo, {11}, bounded, nullptr, -1.0), std::invalid_argument);
+    }
+}

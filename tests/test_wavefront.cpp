@@ -147,10 +147,17 @@ TEST_CASE("wavefront: vorogeo exact answers with either engine, the same field",
     size_t values = 0;
     for (double x, y; a >> x && b >> y; ++values) REQUIRE(x == Approx(y).epsilon(1e-12).margin(1e-15));
     CHECK(values == mesh.vertexCount());
-    // A distance bound needs MMP's early stop; a misspelt engine is named.
-    r = test::runTool("exact " + test::quote(path) + " --source 5 --max-distance 0.5 --engine wavefront");
+    // A single target needs MMP's early stop; a misspelt engine is named.
+    r = test::runTool("exact " + test::quote(path) + " --source 5 --target 9 --engine wavefront");
     CHECK(r.status == 2);
     CHECK_THAT(r.err, Catch::Contains("--engine mmp"));
+    r = test::runTool("exact " + test::quote(path) + " --source 5 --target 9");
+    CHECK(r.status == 0);
+    CHECK_THAT(r.err, Catch::Contains("(mmp)"));
+    const std::string bounded = dir.file("bounded.csv");
+    r = test::runTool("exact " + test::quote(path) + " --source 5 --max-distance 0.5 --out " + test::quote(bounded));
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.err, Catch::Contains("(wavefront)"));
     r = test::runTool("exact " + test::quote(path) + " --source 5 --engine vtp");
     CHECK(r.status == 2);
     CHECK_THAT(r.err, Catch::Contains("'vtp'"));

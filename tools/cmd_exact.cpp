@@ -21,7 +21,7 @@ const char* kUsage =
     "       vorogeo exact MESH --source V --field FIELD.csv [--json] [--engine E]\n"
     "  Exact polyhedral geodesic distances by window propagation.\n"
     "  --engine: wavefront (default: window lists crossing a face at once) or mmp (windows\n"
-    "  one at a time, kept on their edges; --max-distance and a single --target use it).\n"
+    "  one at a time, kept on their edges; a single --target uses it, to stop there).\n"
     "  --pairs: recompute every 'source,target,distance' row and report the relative error\n"
     "  and the single-source time; exits 1 if a pair disagrees beyond 1e-6 relative\n"
     "  (or 1e-9 x bounding-box diagonal near zero). --field: the same for one-to-all values.\n"
@@ -142,11 +142,12 @@ int runExact(int argc, char** argv) {
             throw cli::UsageError("--target " + args.str("--target") + " is not a vertex of the mesh");
         if (!args.has("--out")) query.targets.push_back(uint32_t(target));
     }
-    // MMP can stop early (a distance bound, one target's value); the wavefront runs to the end.
+    // MMP can stop once one target's value is final; the wavefront runs to the end (of
+    // the distance bound, if any).
     ExactEngine engine = engineOf(args);
-    const bool early = query.maxDistance < kInfinity || !query.targets.empty();
+    const bool early = !query.targets.empty();
     if (early && args.has("--engine") && engine == ExactEngine::Wavefront)
-        throw cli::UsageError("--max-distance and --target without --out need --engine mmp");
+        throw cli::UsageError("--target without --out needs --engine mmp (it stops at the target)");
     if (early) engine = ExactEngine::Mmp;
     ExactWorkspace ws;
     WavefrontWorkspace wavefront;
@@ -154,7 +155,7 @@ int runExact(int argc, char** argv) {
     ExactStats stats;
     Stopwatch clock;
     if (engine == ExactEngine::Mmp) ws.run(geo, query, dist, &stats);
-    else wavefront.run(geo, {uint32_t(source)}, dist, &stats);
+    else wavefront.run(geo, {uint32_t(source)}, dist, &stats, query.maxDistance);
     const double ms = clock.seconds() * 1e3;
 
     if (args.has("--out")) {

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -161,6 +162,24 @@ TEST_CASE("wavefront: vorogeo exact answers with either engine, the same field",
     r = test::runTool("exact " + test::quote(path) + " --source 5 --engine vtp");
     CHECK(r.status == 2);
     CHECK_THAT(r.err, Catch::Contains("'vtp'"));
+
+    // --pairs checks a pairs file with either engine and names it.
+    Mesh loaded;
+    REQUIRE(loadMesh(path, LoadOptions{}, loaded).ok);
+    const std::vector<double> from5 = wavefrontDistancesFrom(ExactGeodesic(loaded), 5);
+    std::string csv = "source,target,distance\n";
+    for (uint32_t t : {0u, 17u, 400u, 799u}) {
+        char line[96];
+        std::snprintf(line, sizeof line, "5,%u,%.17g\n", t, from5[t]);
+        csv += line;
+    }
+    const std::string pairs = dir.write("pairs.csv", csv);
+    for (const char* engine : {"wavefront", "mmp"}) {
+        r = test::runTool("exact " + test::quote(path) + " --pairs " + test::quote(pairs) + " --json --engine " + engine);
+        CHECK(r.status == 0);
+        CHECK_THAT(r.out, Catch::Contains(std::string("\"engine\":\"") + engine + "\""));
+        CHECK_THAT(r.out, Catch::Contains("\"failures\":0"));
+    }
 }
 
 TEST_CASE("wavefront: a distance bound drops the work beyond it, not the distances within", "[exact][wavefront]") {

@@ -49,21 +49,23 @@ int runPairs(const Mesh& mesh, const ExactGeodesic& geo, const cli::Args& args, 
     const int threads = int(args.integer("--threads", 0));
     if (threads < 0) throw cli::UsageError("--threads must be >= 0");
     Stopwatch wall;
-    const PairCheckResult r = checkPairs(geo, pairs, tol, threads, engineOf(args));
+    const ExactEngine engine = engineOf(args);
+    const PairCheckResult r = checkPairs(geo, pairs, tol, threads, engine);
     const double p50 = percentile(r.sourceSeconds, 50) * 1e3, p90 = percentile(r.sourceSeconds, 90) * 1e3;
     if (args.flag("--json")) {
-        std::printf("{\"mesh\":\"%s\",\"vertices\":%u,\"pairs\":%zu,\"sources\":%zu,\"failures\":%zu,"
-                    "\"max_rel_error\":%.3e,\"mean_rel_error\":%.3e,\"max_abs_error\":%.3e,"
+        std::printf("{\"mesh\":\"%s\",\"engine\":\"%s\",\"vertices\":%u,\"pairs\":%zu,\"sources\":%zu,"
+                    "\"failures\":%zu,\"max_rel_error\":%.3e,\"mean_rel_error\":%.3e,\"max_abs_error\":%.3e,"
                     "\"ssad_p50_ms\":%.3f,\"ssad_p90_ms\":%.3f,\"windows_per_source\":%.0f,"
                     "\"threads\":%d,\"wall_s\":%.3f,\"peak_rss_mb\":%.1f}\n",
-                    args.positional()[0].c_str(), mesh.vertexCount(), r.pairs, r.sources, r.failures,
+                    args.positional()[0].c_str(), engineName(engine), mesh.vertexCount(), r.pairs, r.sources,
+                    r.failures,
                     r.maxRelError, r.meanRelError, r.maxAbsError, p50, p90,
                     r.sources ? double(r.windows) / double(r.sources) : 0.0, threads, wall.seconds(), peakRssMb());
     } else {
         std::printf("pairs %zu from %zu sources: max relative error %.3e, mean %.3e, max absolute %.3e\n",
                     r.pairs, r.sources, r.maxRelError, r.meanRelError, r.maxAbsError);
-        std::printf("single source, all destinations: median %.2f ms, p90 %.2f ms (%.0f windows per source)\n",
-                    p50, p90, r.sources ? double(r.windows) / double(r.sources) : 0.0);
+        std::printf("single source, all destinations (%s): median %.2f ms, p90 %.2f ms (%.0f windows per source)\n",
+                    engineName(engine), p50, p90, r.sources ? double(r.windows) / double(r.sources) : 0.0);
     }
     if (r.failures) {
         std::fprintf(stderr, "vorogeo exact: %zu of %zu pairs disagree; worst %u -> %u: ", r.failures, r.pairs,
@@ -85,15 +87,18 @@ int runField(const Mesh& mesh, const ExactGeodesic& geo, uint32_t source, const 
         std::fprintf(stderr, "vorogeo exact: %s\n", error.c_str());
         return 1;
     }
-    const FieldCheckResult r = checkField(geo, source, reference, tol, engineOf(args));
+    const ExactEngine engine = engineOf(args);
+    const FieldCheckResult r = checkField(geo, source, reference, tol, engine);
     if (args.flag("--json"))
-        std::printf("{\"mesh\":\"%s\",\"vertices\":%u,\"source\":%u,\"values\":%zu,\"failures\":%zu,"
-                    "\"max_rel_error\":%.3e,\"mean_rel_error\":%.3e,\"max_abs_error\":%.3e,\"ssad_ms\":%.3f}\n",
-                    args.positional()[0].c_str(), mesh.vertexCount(), source, r.values, r.failures,
+        std::printf("{\"mesh\":\"%s\",\"engine\":\"%s\",\"vertices\":%u,\"source\":%u,\"values\":%zu,"
+                    "\"failures\":%zu,\"max_rel_error\":%.3e,\"mean_rel_error\":%.3e,\"max_abs_error\":%.3e,"
+                    "\"ssad_ms\":%.3f}\n",
+                    args.positional()[0].c_str(), engineName(engine), mesh.vertexCount(), source, r.values,
+                    r.failures,
                     r.maxRelError, r.meanRelError, r.maxAbsError, r.seconds * 1e3);
     else
-        std::printf("field of %u: %zu values, max relative error %.3e, mean %.3e, max absolute %.3e, %.2f ms\n",
-                    source, r.values, r.maxRelError, r.meanRelError, r.maxAbsError, r.seconds * 1e3);
+        std::printf("field of %u (%s): %zu values, max relative error %.3e, mean %.3e, max absolute %.3e, %.2f ms\n",
+                    source, engineName(engine), r.values, r.maxRelError, r.meanRelError, r.maxAbsError, r.seconds * 1e3);
     if (r.failures) {
         std::fprintf(stderr, "vorogeo exact: %zu of %zu values disagree (worst at vertex %u)\n", r.failures,
                      r.values, r.worstVertex);

@@ -201,9 +201,7 @@ void WavefrontWorkspace::propagateList(int32_t h) {
                 continue;
             // Distances only grow along a window's rays: one that starts beyond the bound
             // gives nothing within it.
-            if (maxDistance_ < kInfinity &&
-                windowDistance(w.sx, w.sy, w.sigma, std::min(std::max(w.sx, w.b0), w.b1)) > maxDistance_)
-                continue;
+            if (maxDistance_ < kInfinity && windowMin(w.b0, w.b1, w.sx, w.sy, w.sigma) > maxDistance_) continue;
             // The window's way to the apex: straight through it, or round one of its ends.
             const double at = splitAtApex(w.sx, w.sy, cx, cy);
             double split = at, toApex;

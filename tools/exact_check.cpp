@@ -46,8 +46,9 @@ bool parseEngine(const std::string& name, ExactEngine& engine) {
     return true;
 }
 
-void ExactRunner::run(const ExactGeodesic& geo, uint32_t source, std::vector<double>& distances, ExactStats* stats) {
-    if (engine_ == ExactEngine::Wavefront) {
+void ExactRunner::run(ExactEngine engine, const ExactGeodesic& geo, uint32_t source, std::vector<double>& distances,
+                      ExactStats* stats) {
+    if (engine == ExactEngine::Wavefront) {
         wavefront_.run(geo, {source}, distances, stats);
         return;
     }
@@ -80,9 +81,7 @@ PairCheckResult checkPairs(const ExactGeodesic& geo, const std::vector<DistanceP
             std::vector<double>& dist = fields.local();
             ExactStats stats;
             Stopwatch clock;
-            ExactRunner& runner = runners.local();
-            runner.setEngine(engine);
-            runner.run(geo, work[i].first, dist, &stats);
+            runners.local().run(engine, geo, work[i].first, dist, &stats);
             seconds[i] = clock.seconds();
             windows[i] = stats.windowsCreated;
             for (size_t p : *work[i].second) computed[p] = dist[pairs[p].target];
@@ -113,10 +112,10 @@ FieldCheckResult checkField(const ExactGeodesic& geo, uint32_t source, const std
     if (reference.size() != geo.vertexCount())
         throw std::invalid_argument("field has " + std::to_string(reference.size()) + " values but the mesh has " +
                                     std::to_string(geo.vertexCount()) + " vertices");
-    ExactRunner runner(engine);
+    ExactRunner runner;
     std::vector<double> dist;
     Stopwatch clock;
-    runner.run(geo, source, dist);
+    runner.run(engine, geo, source, dist);
     FieldCheckResult r;
     r.seconds = clock.seconds();
     ErrorAccumulator acc;

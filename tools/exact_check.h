@@ -17,16 +17,14 @@ const char* engineName(ExactEngine engine);
 // Parses "wavefront" or "mmp"; false for anything else.
 bool parseEngine(const std::string& name, ExactEngine& engine);
 
-// One single-source all-destinations run with the chosen engine (each thread its own object).
+// One single-source all-destinations run with the chosen engine; each thread keeps one
+// (the workspaces of both engines, reused between runs).
 class ExactRunner {
 public:
-    explicit ExactRunner(ExactEngine engine = ExactEngine::Wavefront) : engine_(engine) {}
-    void setEngine(ExactEngine engine) { engine_ = engine; }
-    void run(const ExactGeodesic& geo, uint32_t source, std::vector<double>& distances, ExactStats* stats = nullptr);
-    size_t memoryBytes() const { return engine_ == ExactEngine::Mmp ? mmp_.memoryBytes() : wavefront_.memoryBytes(); }
+    void run(ExactEngine engine, const ExactGeodesic& geo, uint32_t source, std::vector<double>& distances,
+             ExactStats* stats = nullptr);
 
 private:
-    ExactEngine engine_;
     ExactWorkspace mmp_;
     WavefrontWorkspace wavefront_;
 };

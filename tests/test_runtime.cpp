@@ -161,6 +161,8 @@ TEST_CASE("runtime: point-to-point agrees with one-to-all, is symmetric and clos
     const Mesh mesh = bumpyTorus(60, 30);
     RuntimeGraph g = openOrFail(bumpyBlob());
     RuntimeWorkspace ws(g);
+    const vg_search_mode mode = GENERATE(VG_SEARCH_DIRECTED, VG_SEARCH_BIDIRECTIONAL);
+    ws.setSearch(mode);
     ExactGeodesic exact(mesh);
     ExactWorkspace ews;
     std::mt19937 rng(7);
@@ -193,7 +195,7 @@ TEST_CASE("runtime: point-to-point agrees with one-to-all, is symmetric and clos
             ++n;
         }
     }
-    INFO("mean " << sumRel / n << " max " << maxRel << " p2p vs field " << maxP2pField);
+    INFO("search " << mode << ": mean " << sumRel / n << " max " << maxRel << " p2p vs field " << maxP2pField);
     CHECK(maxP2pField <= 0.02);
     CHECK(sumRel / n <= 0.005);
     CHECK(maxRel <= 0.05);
@@ -235,6 +237,7 @@ TEST_CASE("runtime: one-to-all on a pruned graph (merged-away nodes) stays close
 TEST_CASE("runtime: the triangle inequality holds up to rounding on random triples", "[runtime]") {
     RuntimeGraph g = openOrFail(bumpyBlob());
     RuntimeWorkspace ws(g);
+    ws.setSearch(GENERATE(VG_SEARCH_DIRECTED, VG_SEARCH_BIDIRECTIONAL));
     const tools::MetricReport m = tools::checkMetric(ws, g.vertexCount(), 400, 3);
     CHECK(m.symmetryViolations == 0);
     CHECK(m.triples == 400);
@@ -250,15 +253,19 @@ TEST_CASE("runtime: bounded queries, nearest of a set and multi-source fields ag
     const uint32_t V = g.vertexCount();
     std::mt19937 rng(11);
     std::uniform_int_distribution<uint32_t> pick(0, V - 1);
-    for (int i = 0; i < 50; ++i) {
-        const uint32_t s = pick(rng), t = pick(rng);
-        const float d = ws.distance(s, t);
-        float within = -1;
-        REQUIRE(vg_distance_within(graph, ws.get(), s, t, d, &within) == VG_OK);
-        CHECK(within == d);
-        REQUIRE(vg_distance_within(graph, ws.get(), s, t, d * 0.99f, &within) == VG_OK);
-        CHECK((d == 0 || std::isinf(within)));
+    for (vg_search_mode mode : {VG_SEARCH_DIRECTED, VG_SEARCH_BIDIRECTIONAL}) {
+        ws.setSearch(mode);
+        for (int i = 0; i < 50; ++i) {
+            const uint32_t s = pick(rng), t = pick(rng);
+            const float d = ws.distance(s, t);
+            float within = -1;
+            REQUIRE(vg_distance_within(graph, ws.get(), s, t, d, &within) == VG_OK);
+            CHECK(within == d);
+            REQUIRE(vg_distance_within(graph, ws.get(), s, t, d * 0.99f, &within) == VG_OK);
+            CHECK((d == 0 || std::isinf(within)));
+        }
     }
+    ws.setSearch(VG_SEARCH_DIRECTED);
     // Nearest of 12 targets = the smallest point-to-point distance, first index on ties.
     for (int i = 0; i < 20; ++i) {
         const uint32_t s = pick(rng);
@@ -333,13 +340,16 @@ TEST_CASE("runtime: vertices of different components are at +infinity in every q
     }
     REQUIRE(other != UINT32_MAX);
     REQUIRE(same != UINT32_MAX);
-    CHECK(std::isinf(ws.distance(0, other)));
-    CHECK(std::isinf(ws.distance(other, 0)));
-    CHECK(std::isfinite(ws.distance(0, same)));
-    CHECK(ws.distance(0, same) > 0);
     float d = 0;
-    REQUIRE(vg_distance_within(graph, ws.get(), 0, other, 1e30f, &d) == VG_OK);
-    CHECK(std::isinf(d));
+    for (vg_search_mode mode : {VG_SEARCH_DIRECTED, VG_SEARCH_BIDIRECTIONAL}) {
+        ws.setSearch(mode);
+        CHECK(std::isinf(ws.distance(0, other)));
+        CHECK(std::isinf(ws.distance(other, 0)));
+        CHECK(std::isfinite(ws.distance(0, same)));
+        CHECK(ws.distance(0, same) > 0);
+        REQUIRE(vg_distance_within(graph, ws.get(), 0, other, 1e30f, &d) == VG_OK);
+        CHECK(std::isinf(d));
+    }
     size_t index = 0;
     const uint32_t targets[1] = {other};
     REQUIRE(vg_nearest(graph, ws.get(), 0, targets, 1, &index, &d) == VG_OK);
@@ -363,6 +373,11 @@ TEST_CASE("runtime: arguments are checked and named by status codes", "[runtime]
     CHECK(vg_distance(graph, nullptr, 0, 1, &d) == VG_ERR_INVALID_ARGUMENT);
     CHECK(vg_distance(graph, ws.get(), 0, 1, nullptr) == VG_ERR_INVALID_ARGUMENT);
     CHECK(vg_distance_within(graph, ws.get(), 0, 1, NAN, &d) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(vg_workspace_set_search(nullptr, VG_SEARCH_DIRECTED) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(vg_workspace_set_search(ws.get(), vg_search_mode(2)) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(vg_workspace_set_search(ws.get(), vg_search_mode(-1)) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(vg_workspace_set_search(ws.get(), VG_SEARCH_BIDIRECTIONAL) == VG_OK);
+    CHECK(vg_workspace_set_search(ws.get(), VG_SEARCH_DIRECTED) == VG_OK);
     const uint32_t bad[2] = {0, V + 5};
     std::vector<float> field(V);
     CHECK(vg_distance_field(graph, ws.get(), bad, 2, field.data()) == VG_ERR_INVALID_VERTEX);
@@ -390,6 +405,8 @@ TEST_CASE("runtime: many threads on one graph give the same bits as one thread",
     for (int i = 0; i < 400; ++i) pairs.emplace_back(pick(rng), pick(rng));
     auto answer = [&](std::vector<float>& out) {
         RuntimeWorkspace ws(g);
+        for (const auto& p : pairs) out.push_back(ws.distance(p.first, p.second));
+        ws.setSearch(VG_SEARCH_BIDIRECTIONAL);
         for (const auto& p : pairs) out.push_back(ws.distance(p.first, p.second));
         const std::vector<float> f = ws.field({pairs[0].first, pairs[1].first});
         out.insert(out.end(), f.begin(), f.end());
@@ -463,12 +480,15 @@ TEST_CASE("runtime: accuracy against the golden pairs of the shared meshes", "[r
         std::vector<tools::DistancePair> pairs;
         std::string error;
         REQUIRE(tools::readPairs(dir + "/../golden/" + c.mesh + ".pairs.csv", pairs, error));
-        const tools::AccuracyReport r = tools::measureAccuracy(ws, pairs);
-        INFO(c.mesh << ": mean " << r.meanRel << " max " << r.maxRel);
-        CHECK(r.pairs > 9000);
-        CHECK(r.infiniteMismatches == 0);
-        CHECK(r.meanRel <= c.maxMean);
-        CHECK(r.maxRel <= c.maxMax);
+        for (vg_search_mode mode : {VG_SEARCH_DIRECTED, VG_SEARCH_BIDIRECTIONAL}) {
+            ws.setSearch(mode);
+            const tools::AccuracyReport r = tools::measureAccuracy(ws, pairs);
+            INFO(c.mesh << ", search " << mode << ": mean " << r.meanRel << " max " << r.maxRel);
+            CHECK(r.pairs > 9000);
+            CHECK(r.infiniteMismatches == 0);
+            CHECK(r.meanRel <= c.maxMean);
+            CHECK(r.maxRel <= c.maxMax);
+        }
     }
 }
 

@@ -122,14 +122,28 @@ TEST_CASE("vorogeo bench, render and voronoi run on a baked mesh", "[tools][cli]
     test::ToolResult r = test::runTool("bench " + mesh + " " + blob + " --pairs 50 --sources 2 --json");
     INFO(r.out << r.err);
     REQUIRE(r.status == 0);
-    for (const char* key : {"sssd_p50_us", "sssd_p99_us", "msad_p50_ms", "exact_ssad_p50_ms", "exact_sssd_p50_ms",
-                            "dijkstra_sssd_p50_us", "dijkstra_ssad_p50_ms", "field_mean_rel_error"})
+    for (const char* key : {"sssd_p50_us", "sssd_p99_us", "bidirectional_sssd_p50_us", "bidirectional_sssd_p99_us",
+                            "msad_p50_ms", "exact_ssad_p50_ms", "exact_sssd_p50_ms", "dijkstra_sssd_p50_us",
+                            "dijkstra_ssad_p50_ms", "field_mean_rel_error"})
         CHECK_THAT(r.out, Catch::Contains(std::string("\"") + key + "\":"));
     r = test::runTool("bench " + mesh + " " + blob + " --pairs 50 --sources 2 --json --runtime-only");
     INFO(r.out << r.err);
     REQUIRE(r.status == 0);
-    CHECK_THAT(r.out, Catch::Contains("\"sssd_p50_us\":") && Catch::Contains("\"msad_p50_ms\":"));
+    CHECK_THAT(r.out, Catch::Contains("\"sssd_p50_us\":") && Catch::Contains("\"msad_p50_ms\":") &&
+                          Catch::Contains("\"bidirectional_sssd_p50_us\":"));
     CHECK_THAT(r.out, !Catch::Contains("exact_ssad_p50_ms"));
+
+    // vorogeo eval with either point-to-point search; the search is named in the report.
+    for (const char* search : {"directed", "bidirectional"}) {
+        r = test::runTool("eval " + mesh + " " + blob + " --pairs 100 --triples 50 --json --search " + search);
+        INFO(r.out << r.err);
+        REQUIRE(r.status == 0);
+        CHECK_THAT(r.out, Catch::Contains(std::string("\"search\":\"") + search + "\""));
+        CHECK_THAT(r.out, Catch::Contains("\"mean_rel_error\":"));
+    }
+    r = test::runTool("eval " + mesh + " " + blob + " --pairs 10 --search sideways");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Catch::Contains("--search"));
 
     const std::string png = f.dir.file("field.png"), ply = f.dir.file("field.ply");
     r = test::runTool("render " + mesh + " --blob " + blob + " --source 3 --exact --size 120x90 --out " +

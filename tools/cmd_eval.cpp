@@ -18,13 +18,16 @@ namespace vorogeo::tools {
 namespace {
 
 const char* kUsage =
-    "usage: vorogeo eval MESH BLOB [--golden PAIRS.csv | --pairs N [--seed S]] [--triples N] [--json]\n"
+    "usage: vorogeo eval MESH BLOB [--golden PAIRS.csv | --pairs N [--seed S]] [--triples N]\n"
+    "                   [--search directed|bidirectional] [--json]\n"
     "  Accuracy of the runtime's point-to-point distance against exact geodesics: from a\n"
     "  golden 'source,target,distance' file, or from the exact engine on N random pairs\n"
     "  (default 1000, drawn from N/100 sources). Reports mean, median, p99 and max relative\n"
     "  error, the worst pairs, symmetry and triangle-inequality violations (on --triples\n"
     "  random triples, default 2000), the query time (p50, p90, p99 in microseconds) and the\n"
-    "  one-to-all time (median over up to 20 sources of the pairs).\n";
+    "  one-to-all time (median over up to 20 sources of the pairs).\n"
+    "  --search  the point-to-point search (vg_workspace_set_search): directed A* (default)\n"
+    "            or the thesis's bidirectional A*\n";
 
 // Random pairs, a hundred targets per source, with exact distances from the exact engine.
 std::vector<DistancePair> exactRandomPairs(const Mesh& mesh, size_t count, uint64_t seed) {
@@ -48,7 +51,7 @@ std::vector<DistancePair> exactRandomPairs(const Mesh& mesh, size_t count, uint6
 }  // namespace
 
 int runEval(int argc, char** argv) {
-    cli::Args args(argc, argv, {"--golden", "--pairs", "--seed", "--triples"}, {"--json", "--help", "--repair"});
+    cli::Args args(argc, argv, {"--golden", "--pairs", "--seed", "--triples", "--search"}, {"--json", "--help", "--repair"});
     if (args.flag("--help")) {
         std::printf("%s", kUsage);
         return 0;
@@ -60,6 +63,10 @@ int runEval(int argc, char** argv) {
     if (pairCount < 1) throw cli::UsageError("--pairs must be >= 1");
     if (triples < 0) throw cli::UsageError("--triples must be >= 0");
     const uint64_t seed = uint64_t(args.integer("--seed", 1));
+    const std::string searchName = args.str("--search", "directed");
+    vg_search_mode search = VG_SEARCH_DIRECTED;
+    if (searchName == "bidirectional") search = VG_SEARCH_BIDIRECTIONAL;
+    else if (searchName != "directed") throw cli::UsageError("--search must be directed or bidirectional");
 
     Mesh mesh;
     if (!loadMeshForCommand("eval", args.positional()[0], args.flag("--repair"), mesh)) return 1;
@@ -84,6 +91,7 @@ int runEval(int argc, char** argv) {
     }
 
     RuntimeWorkspace ws(graph);
+    ws.setSearch(search);
     const AccuracyReport acc = measureAccuracy(ws, pairs);
     const MetricReport metric = checkMetric(ws, mesh.vertexCount(), size_t(triples), seed);
     // One-to-all from the first sources of the pairs (at most 20 distinct).
@@ -101,14 +109,14 @@ int runEval(int argc, char** argv) {
     const double bboxDiag = double(vg_bbox_diagonal(graph.graph()));
 
     if (args.flag("--json")) {
-        std::printf("{\"mesh\":\"%s\",\"vertices\":%u,\"blob_bytes\":%zu,\"open_ms\":%.3f,\"pairs\":%zu,"
+        std::printf("{\"mesh\":\"%s\",\"search\":\"%s\",\"vertices\":%u,\"blob_bytes\":%zu,\"open_ms\":%.3f,\"pairs\":%zu,"
                     "\"mean_rel_error\":%.6e,\"median_rel_error\":%.6e,\"p99_rel_error\":%.6e,\"max_rel_error\":%.6e,"
                     "\"pairs_over_1pct\":%zu,\"infinite_mismatches\":%zu,"
                     "\"sssd_p50_us\":%.2f,\"sssd_p90_us\":%.2f,\"sssd_p99_us\":%.2f,\"msad_p50_ms\":%.3f,"
                     "\"symmetry_pairs\":%zu,\"symmetry_violations\":%zu,\"max_symmetry_rel\":%.3e,"
                     "\"triples\":%zu,\"triangle_violations\":%zu,\"max_triangle_excess\":%.3e}\n",
-                    args.positional()[0].c_str(), mesh.vertexCount(), graph.blobBytes(), graph.openSeconds() * 1e3,
-                    acc.pairs, acc.meanRel, acc.medianRel, acc.p99Rel, acc.maxRel, acc.overOnePercent,
+                    args.positional()[0].c_str(), searchName.c_str(), mesh.vertexCount(), graph.blobBytes(),
+                    graph.openSeconds() * 1e3, acc.pairs, acc.meanRel, acc.medianRel, acc.p99Rel, acc.maxRel, acc.overOnePercent,
                     acc.infiniteMismatches, acc.p50Us, acc.p90Us, acc.p99Us, msadP50, metric.symmetryPairs,
                     metric.symmetryViolations, metric.maxSymmetryRel, metric.triples, metric.triangleViolations,
                     metric.maxTriangleExcess / bboxDiag);
@@ -125,7 +133,8 @@ int runEval(int argc, char** argv) {
     std::printf("worst pairs (source, target, exact, runtime, relative error):\n");
     for (const PairError& w : acc.worst)
         std::printf("  %u %u %.6g %.6g %.4f%%\n", w.source, w.target, w.exact, w.value, w.rel * 100);
-    std::printf("point-to-point: p50 %.1f us, p90 %.1f us, p99 %.1f us\n", acc.p50Us, acc.p90Us, acc.p99Us);
+    std::printf("point-to-point (%s search): p50 %.1f us, p90 %.1f us, p99 %.1f us\n", searchName.c_str(), acc.p50Us,
+                acc.p90Us, acc.p99Us);
     std::printf("one-to-all: p50 %.2f ms (%zu sources)\n", msadP50, fieldMs.size());
     std::printf("symmetry: %zu of %zu pairs differ (max %.2e relative)\n", metric.symmetryViolations,
                 metric.symmetryPairs, metric.maxSymmetryRel);

@@ -52,6 +52,14 @@ RuntimeWorkspace::RuntimeWorkspace(const vg_graph* graph) : graph_(graph) {
     }
 }
 
+void RuntimeWorkspace::setSearch(vg_search_mode mode) const {
+    const vg_status st = vg_workspace_set_search(ws_, mode);
+    if (st != VG_OK) {
+        std::fprintf(stderr, "vorogeo: vg_workspace_set_search(%d): %s\n", int(mode), vg_status_string(st));
+        std::abort();
+    }
+}
+
 float RuntimeWorkspace::distance(uint32_t s, uint32_t t) const {
     float d = 0;
     const vg_status st = vg_distance(graph_, ws_, s, t, &d);

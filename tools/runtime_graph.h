@@ -46,6 +46,7 @@ public:
     vg_workspace* get() const { return ws_; }
 
     float distance(uint32_t s, uint32_t t) const;  // aborts the program on a status error
+    void setSearch(vg_search_mode mode) const;      // the point-to-point search of later queries
     std::vector<float> field(const std::vector<uint32_t>& sources) const;
 
 private:

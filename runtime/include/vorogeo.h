@@ -136,11 +136,24 @@ VG_API size_t vg_workspace_size(const vg_graph* graph);
 VG_API vg_status vg_workspace_init(const vg_graph* graph, void* memory, size_t memory_size,
                             vg_workspace** out_workspace);
 
+/* How a workspace's point-to-point queries (vg_distance, vg_distance_within,
+ * vg_point_distance, vg_point_distance_within) search the graph (vg_path always searches
+ * bidirectionally: the route it traces from the meeting point pulls tauter):
+ * VG_SEARCH_DIRECTED (set by vg_workspace_init): A* from the source with the whole
+ *   lower bound to the target as its potential; the faster one.
+ * VG_SEARCH_BIDIRECTIONAL: the thesis's bidirectional A* (3.7.1), for comparison.
+ * Both are exact over the same graph; their answers differ only in which unfolded border
+ * crossings they meet (BENCHMARKS.md has both on every mesh). The mode stays until changed;
+ * like every workspace call, not concurrently with a query on the same workspace. */
+typedef enum vg_search_mode { VG_SEARCH_DIRECTED = 0, VG_SEARCH_BIDIRECTIONAL = 1 } vg_search_mode;
+VG_API vg_status vg_workspace_set_search(vg_workspace* workspace, vg_search_mode mode);
+
 /* ------------------------------------------------------------------ queries */
 
-/* Geodesic distance between two vertices: the hierarchical bidirectional A* of the
- * thesis (3.7.1); two vertices of one second-layer patch are answered by a lookup,
- * refined only when a path through the graph is shorter. */
+/* Geodesic distance between two vertices: an A* search over the two-layer graph of the
+ * thesis (3.7.1; directed or bidirectional, vg_workspace_set_search); two vertices of one
+ * second-layer patch are answered by a lookup, refined only when a path through the graph
+ * is shorter. */
 VG_API vg_status vg_distance(const vg_graph* graph, vg_workspace* workspace, uint32_t source,
                       uint32_t target, float* out_distance);
 

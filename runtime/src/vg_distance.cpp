@@ -1,16 +1,24 @@
-// Point-to-point distance (thesis 3.7.1): bidirectional A* over the two-layer graph with
-// the straight-line heuristic, tightened by landmark bounds (vg_lower_bound.h). Both
-// directions search one graph: the second layer of the
+// Point-to-point distance (thesis 3.7.1) over the two-layer graph: the second layer of the
 // first-layer patches around the source and the target, the overlay everywhere else (a
 // path that crosses another first-layer patch does so along one overlay edge, which is
-// the shortest crossing through that patch's second layer). Searching the same graph in
-// both directions is what makes the usual stopping rule sound.
+// the shortest crossing through that patch's second layer). Lower bounds b(v, x) are the
+// straight line tightened by landmark bounds (vg_lower_bound.h). Two searches, chosen per
+// workspace (vg_workspace_set_search):
 //
-// Potentials are the average of the two directions, p(v) = (b(v, t) - b(v, s)) / 2 for
-// the forward search and -p(v) backward, with b a lower bound of the distance, so both searches see the same non-negative
-// reduced edge lengths: no undiscovered path is shorter than topForward + topBackward.
-// Quantisation can make a stored length a hair shorter than a bound; a node
-// whose label drops after it was settled is simply queued again.
+// * directed (the default): A* from s with the whole bound b(v, t) as its potential; the
+//   target side only seeds t's patch nodes (and relaxes t's own rows when t is a node),
+//   so that the search meets it there, also across the border edges next to t. It stops
+//   once the smallest key reaches the best meeting: every key bounds every path through
+//   its node from below.
+// * bidirectional (the thesis's): both directions search one graph with the average
+//   potentials p(v) = (b(v, t) - b(v, s)) / 2 forward and -p(v) backward, so both see the
+//   same non-negative reduced edge lengths and no undiscovered path is shorter than
+//   topForward + topBackward (searching the same graph in both directions is what makes
+//   that stopping rule sound). Halving the bound is what makes it slower: on igea its
+//   median query settles 2.5x the nodes of the directed one (BENCHMARKS.md).
+//
+// Quantisation can make a stored length a hair shorter than a bound; a node whose label
+// drops after it was settled is simply queued again.
 #include "vg_fan.h"
 #include "vg_point_to_point.h"
 #include "vg_query.h"
@@ -37,7 +45,8 @@ bool sameEndpoint(const Endpoint& a, const Endpoint& b) { return !endpointLess(a
 
 namespace vg {
 
-float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float maxDistance, Meeting* how) {
+float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float maxDistance, vg_search_mode mode,
+                   Meeting* how) {
     const float inf = __builtin_inff();
     Meeting scratch;
     Meeting& m = how ? *how : scratch;
@@ -95,28 +104,33 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, 
     const float* pt = t.position;
     landmarkDistances(g, s, ws.landmarkSource);
     landmarkDistances(g, t, ws.landmarkTarget);
+    const bool directed = mode == VG_SEARCH_DIRECTED;
+    // Directed: the forward potential is the whole bound to t. Bidirectional: half of
+    // (bound to t - bound to s), and its negation backward.
     auto potential = [&](uint32_t node) {
         Potential& p = ws.potential[node];
         if (p.stamp != gen) {
             const float* r = ws.nodeRecords + uint64_t(node) * (3 + g.landmarkCount);
-            p.value = 0.5f * (nodeBound(g, r, pt, ws.landmarkTarget) - nodeBound(g, r, ps, ws.landmarkSource));
+            const float toT = nodeBound(g, r, pt, ws.landmarkTarget);
+            p.value = directed ? toT : 0.5f * (toT - nodeBound(g, r, ps, ws.landmarkSource));
             p.stamp = gen;
         }
         return p.value;
     };
     Frontier& F = ws.forward;
     Frontier& B = ws.backward;
-    // Any path through v is at least its key plus half a lower bound of d(s, t) (the
-    // potentials are halves of lower bounds): such a node is left alone once that reaches
-    // the best found, with a margin for the unfolded crossings, which can undercut the
-    // best path through a node by a few percent.
+    // Any path through v is at least its key (directed), or its key plus half a lower
+    // bound of d(s, t) (bidirectional: the potentials are halves of lower bounds): such a
+    // node is left alone once that reaches the best found, with a margin for the unfolded
+    // crossings, which can undercut the best path through a node by a few percent.
     float bound = distance3(ps, pt);
     const float viaLandmarks = landmarkBound(g, ws.landmarkSource, ws.landmarkTarget);
     if (viaLandmarks > bound) bound = viaLandmarks;
-    const float halfBound = 0.5f * bound;
-    auto prune = [&](float key) { return key + halfBound < kUnfoldSlack * best ? key : __builtin_inff(); };
+    const float keyMargin = directed ? 0.0f : 0.5f * bound;
+    auto prune = [&](float key) { return key + keyMargin < kUnfoldSlack * best ? key : __builtin_inff(); };
     auto forwardKey = [&](uint32_t v, float dv) { return prune(dv + potential(v)); };
-    auto backwardKey = [&](uint32_t v, float dv) { return prune(dv - potential(v)); };
+    // Directed: the backward labels are never searched from, their key is their distance.
+    auto backwardKey = [&](uint32_t v, float dv) { return prune(directed ? dv : dv - potential(v)); };
     // A node labelled from both sides joins the two searches: through the node itself,
     // and across each mesh edge to a neighbour node labelled from both sides too.
     auto meet = [&](uint32_t v) {
@@ -143,16 +157,31 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, 
     seedEndpoint(g, s, 0, F, forwardKey, onLabel);
     seedEndpoint(g, t, 0, B, backwardKey, onLabel);
 
-    // One side exhausted: every node it can reach is final, so the best meeting is known.
-    while (!F.empty() && !B.empty()) {
-        const float lower = F.topKey() + B.topKey();
-        if (!(lower < best) || lower > kUnfoldSlack * maxDistance) break;
-        if (F.topKey() <= B.topKey()) {
+    if (directed) {
+        // A target that is a node itself: its rows label the nodes around it, so that the
+        // search can meet it across the border edges next to it, not only at it.
+        while (!B.empty() && B.label[B.heap[0].node].dist == 0.0f) {
+            const uint32_t u = B.pop().node;
+            relaxNode(g, u, 0.0f, scope, B, backwardKey, onLabel);
+        }
+        while (!F.empty()) {
+            const float lower = F.topKey();
+            if (!(lower < best) || lower > kUnfoldSlack * maxDistance) break;
             const uint32_t u = F.pop().node;
             relaxNode(g, u, F.label[u].dist, scope, F, forwardKey, onLabel);
-        } else {
-            const uint32_t u = B.pop().node;
-            relaxNode(g, u, B.label[u].dist, scope, B, backwardKey, onLabel);
+        }
+    } else {
+        // One side exhausted: every node it can reach is final, so the best meeting is known.
+        while (!F.empty() && !B.empty()) {
+            const float lower = F.topKey() + B.topKey();
+            if (!(lower < best) || lower > kUnfoldSlack * maxDistance) break;
+            if (F.topKey() <= B.topKey()) {
+                const uint32_t u = F.pop().node;
+                relaxNode(g, u, F.label[u].dist, scope, F, forwardKey, onLabel);
+            } else {
+                const uint32_t u = B.pop().node;
+                relaxNode(g, u, B.label[u].dist, scope, B, backwardKey, onLabel);
+            }
         }
     }
     if (!(best <= maxDistance)) {
@@ -177,7 +206,7 @@ extern "C" vg_status vg_distance_within(const vg_graph* graph, vg_workspace* wor
     if (source >= graph->vertexCount || target >= graph->vertexCount) return VG_ERR_INVALID_VERTEX;
     if (max_distance != max_distance) return VG_ERR_INVALID_ARGUMENT;  // NaN bound
     *out_distance = pointToPoint(*graph, *workspace, vertexEndpoint(*graph, source), vertexEndpoint(*graph, target),
-                                 max_distance);
+                                 max_distance, workspace->searchMode);
     return VG_OK;
 }
 
@@ -195,6 +224,6 @@ extern "C" vg_status vg_point_distance_within(const vg_graph* graph, vg_workspac
     vg::Endpoint s, t;
     if (vg::resolvePoint(*graph, *source, s) != VG_OK || vg::resolvePoint(*graph, *target, t) != VG_OK)
         return VG_ERR_INVALID_POINT;
-    *out_distance = pointToPoint(*graph, *workspace, s, t, max_distance);
+    *out_distance = pointToPoint(*graph, *workspace, s, t, max_distance, workspace->searchMode);
     return VG_OK;
 }

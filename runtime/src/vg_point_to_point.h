@@ -25,8 +25,9 @@ struct Meeting {
     uint32_t patch, node, other, vertex, way;
 };
 
-// Distance from s to t (+inf beyond maxDistance); with `how`, also how it was found.
+// Distance from s to t (+inf beyond maxDistance) by the given search (vg_distance.cpp);
+// with `how`, also how it was found.
 float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float maxDistance,
-                   Meeting* how = nullptr);
+                   vg_search_mode mode, Meeting* how = nullptr);
 
 }  // namespace vg

@@ -151,6 +151,14 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
     assign(*graph, L, ws);
     clearStamps(*ws);
     fillNodeRecords(*graph, ws->nodeRecords);
+    ws->searchMode = VG_SEARCH_DIRECTED;
     *out_workspace = ws;
+    return VG_OK;
+}
+
+extern "C" vg_status vg_workspace_set_search(vg_workspace* workspace, vg_search_mode mode) {
+    if (workspace == nullptr) return VG_ERR_INVALID_ARGUMENT;
+    if (mode != VG_SEARCH_DIRECTED && mode != VG_SEARCH_BIDIRECTIONAL) return VG_ERR_INVALID_ARGUMENT;
+    workspace->searchMode = mode;
     return VG_OK;
 }

@@ -198,6 +198,7 @@ struct FieldSlice {
 struct vg_workspace {
     const vg_graph* graph;
     uint32_t generation;
+    vg_search_mode searchMode;     // point-to-point search (vg_workspace_set_search)
     vg::Frontier forward, backward;
     float landmarkSource[vg::kMaxLandmarks];  // d(L, source) and d(L, target) of the current query
     float landmarkTarget[vg::kMaxLandmarks];

@@ -75,6 +75,9 @@ void queryEverything(const vg_graph* g, const uint8_t* data, size_t size) {
     float d = 0;
     for (int i = 0; i < 4; ++i) {
         const uint32_t a = vertex(steer, V), b = vertex(steer, V);
+        // Both point-to-point searches, in turn (without reading the input, so that the
+        // recorded findings still steer the queries they did).
+        if (vg_workspace_set_search(ws, (i & 1) ? VG_SEARCH_DIRECTED : VG_SEARCH_BIDIRECTIONAL) != VG_OK) std::abort();
         check(vg_distance(g, ws, a, b, &d));
         check(vg_distance_within(g, ws, a, b, bound(steer), &d));
     }

@@ -71,6 +71,17 @@ int main(int argc, char** argv) {
         fprintf(stderr, "c99_query: d(0, last) = %g but d(last, 0) = %g\n", d, back);
         return 1;
     }
+    /* The thesis's bidirectional search answers the same pair within the unfolding. */
+    st = vg_workspace_set_search(ws, VG_SEARCH_BIDIRECTIONAL);
+    if (st != VG_OK) return fail("vg_workspace_set_search", st);
+    st = vg_distance(graph, ws, 0, vertices - 1, &back);
+    if (st != VG_OK) return fail("vg_distance (bidirectional)", st);
+    if (fabsf(back - d) > 0.02f * d) {
+        fprintf(stderr, "c99_query: d(0, last) = %g directed but %g bidirectional\n", d, back);
+        return 1;
+    }
+    st = vg_workspace_set_search(ws, VG_SEARCH_DIRECTED);
+    if (st != VG_OK) return fail("vg_workspace_set_search", st);
     field = (float*)malloc(sizeof(float) * vertices);
     st = vg_distance_field(graph, ws, targets, 0, field);
     if (st != VG_OK) return fail("vg_distance_field", st);

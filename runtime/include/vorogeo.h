@@ -142,7 +142,7 @@ VG_API vg_status vg_workspace_init(const vg_graph* graph, void* memory, size_t m
  * VG_SEARCH_DIRECTED (set by vg_workspace_init): A* from the source with the whole
  *   lower bound to the target as its potential; the faster one.
  * VG_SEARCH_BIDIRECTIONAL: the thesis's bidirectional A* (3.7.1), for comparison.
- * Both are exact over the same graph; their answers differ only in which unfolded border
+ * Both search the same graph; their answers differ only in which unfolded border
  * crossings they meet (BENCHMARKS.md has both on every mesh). The mode stays until changed;
  * like every workspace call, not concurrently with a query on the same workspace. */
 typedef enum vg_search_mode { VG_SEARCH_DIRECTED = 0, VG_SEARCH_BIDIRECTIONAL = 1 } vg_search_mode;

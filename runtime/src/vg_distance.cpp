@@ -14,8 +14,9 @@
 //   potentials p(v) = (b(v, t) - b(v, s)) / 2 forward and -p(v) backward, so both see the
 //   same non-negative reduced edge lengths and no undiscovered path is shorter than
 //   topForward + topBackward (searching the same graph in both directions is what makes
-//   that stopping rule sound). Halving the bound is what makes it slower: on igea its
-//   median query settles 2.5x the nodes of the directed one (BENCHMARKS.md).
+//   that stopping rule sound). Halving the bound is what makes it slower: on igea's
+//   longest pairs it settles 1.6-1.9x the nodes of the directed search and takes 2-2.5x
+//   its time (BENCHMARKS.md).
 //
 // Quantisation can make a stored length a hair shorter than a bound; a node whose label
 // drops after it was settled is simply queued again.

@@ -9,7 +9,8 @@
 //   target side only seeds t's patch nodes (and relaxes t's own rows when t is a node),
 //   so that the search meets it there, also across the border edges next to t. It stops
 //   once the smallest key reaches the best meeting: every key bounds every path through
-//   its node from below.
+//   its node from below. Two endpoints of one first-layer patch are searched
+//   bidirectionally all the same (see below).
 // * bidirectional (the thesis's): both directions search one graph with the average
 //   potentials p(v) = (b(v, t) - b(v, s)) / 2 forward and -p(v) backward, so both see the
 //   same non-negative reduced edge lengths and no undiscovered path is shorter than
@@ -98,6 +99,10 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, 
     });
 
     detailAround(g, s, ws.detail, gen);
+    // Two endpoints of one first-layer patch make a short query, searched from both ends
+    // even in the directed mode: their meeting in the middle unfolds the border crossing
+    // there, which matters most for short pairs, and both searches stay small.
+    const bool oneFirstPatch = nearDetailed(g, t, ws.detail, gen);
     detailAround(g, t, ws.detail, gen);
     const Scope scope{ws.detail, gen};
 
@@ -105,7 +110,7 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, 
     const float* pt = t.position;
     landmarkDistances(g, s, ws.landmarkSource);
     landmarkDistances(g, t, ws.landmarkTarget);
-    const bool directed = mode == VG_SEARCH_DIRECTED;
+    const bool directed = mode == VG_SEARCH_DIRECTED && !oneFirstPatch;
     // Directed: the forward potential is the whole bound to t. Bidirectional: half of
     // (bound to t - bound to s), and its negation backward.
     auto potential = [&](uint32_t node) {

@@ -124,6 +124,14 @@ inline void detailAround(const vg_graph& g, const Endpoint& e, uint32_t* detail,
     else detail[g.second[e.patch].parent] = generation;
 }
 
+// True when a first-layer patch around the endpoint is detailed already.
+inline bool nearDetailed(const vg_graph& g, const Endpoint& e, const uint32_t* detail, uint32_t generation) {
+    if (!e.isVertex()) return detail[g.second[e.patch].parent] == generation;
+    bool near = false;
+    forEachPatchOf(g, e.vertex, [&](uint32_t patch, uint32_t) { near |= detail[g.second[patch].parent] == generation; });
+    return near;
+}
+
 // seedEndpoint for any endpoint: a surface point starts at the active nodes of its
 // face's patch, at interpolated distances.
 template <class KeyOf, class OnImprove>

@@ -201,6 +201,33 @@ TEST_CASE("runtime: point-to-point agrees with one-to-all, is symmetric and clos
     CHECK(maxRel <= 0.05);
 }
 
+TEST_CASE("runtime: the directed search keeps the better answer of both searches on short pairs", "[runtime]") {
+    const Mesh mesh = bumpyTorus(60, 30);
+    RuntimeGraph g = openOrFail(bumpyBlob());
+    RuntimeWorkspace directed(g), both(g);
+    both.setSearch(VG_SEARCH_BIDIRECTIONAL);
+    const float diagonal = vg_bbox_diagonal(g.graph());
+    std::mt19937 rng(23);
+    std::uniform_int_distribution<uint32_t> pick(0, mesh.vertexCount() - 1);
+    size_t shortPairs = 0, lower = 0;
+    for (int i = 0; i < 100000 && shortPairs < 300; ++i) {
+        const uint32_t s = pick(rng), t = pick(rng);
+        const Vec3 a = mesh.positions[s], b = mesh.positions[t];
+        const double straight = std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z));
+        if (s == t || straight >= 0.09 * diagonal) continue;
+        const float d = directed.distance(s, t), e = both.distance(s, t);
+        // Short for the runtime: its lower bound of the distance is under a tenth of the
+        // diagonal, which holds when the answer is under 0.09 of it (the answer is within
+        // a percent of the geodesic, the bound below it).
+        if (!(e < 0.09f * diagonal)) continue;
+        ++shortPairs;
+        CHECK(d <= e);
+        lower += d < e;
+    }
+    INFO("short pairs " << shortPairs << ", answered shorter than the bidirectional search " << lower);
+    CHECK(shortPairs >= 100);
+}
+
 TEST_CASE("runtime: one-to-all on a pruned graph (merged-away nodes) stays close to exact", "[runtime]") {
     // The one-to-all search never labels a merged-away node; the fill gives them, like
     // interior vertices, the best of their patch's nodes. (Point-to-point is no reference

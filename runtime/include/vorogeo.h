@@ -140,9 +140,9 @@ VG_API vg_status vg_workspace_init(const vg_graph* graph, void* memory, size_t m
  * vg_point_distance, vg_point_distance_within) search the graph (vg_path always searches
  * bidirectionally: the route it traces from the meeting point pulls tauter):
  * VG_SEARCH_DIRECTED (set by vg_workspace_init): A* from the source with the whole
- *   lower bound to the target as its potential; the faster one. Two endpoints of one
- *   first-layer patch (short queries) are still searched from both ends, whose meeting
- *   in the middle is worth more accuracy there than the stronger bound is time.
+ *   lower bound to the target as its potential; the faster one. A short pair (one
+ *   first-layer patch, or closer than a tenth of the bounding-box diagonal) is also
+ *   searched bidirectionally and gets the shorter of the two answers.
  * VG_SEARCH_BIDIRECTIONAL: the thesis's bidirectional A* (3.7.1), for comparison.
  * Both search the same graph; their answers differ only in which unfolded border
  * crossings they meet (BENCHMARKS.md has both on every mesh). The mode stays until changed;

@@ -9,8 +9,7 @@
 //   target side only seeds t's patch nodes (and relaxes t's own rows when t is a node),
 //   so that the search meets it there, also across the border edges next to t. It stops
 //   once the smallest key reaches the best meeting: every key bounds every path through
-//   its node from below. Two endpoints of one first-layer patch are searched
-//   bidirectionally all the same (see below).
+//   its node from below. A short pair is searched both ways (pointToPoint, below).
 // * bidirectional (the thesis's): both directions search one graph with the average
 //   potentials p(v) = (b(v, t) - b(v, s)) / 2 forward and -p(v) backward, so both see the
 //   same non-negative reduced edge lengths and no undiscovered path is shorter than
@@ -31,6 +30,9 @@ namespace {
 
 using namespace vg;
 
+// Pairs closer than this share of the bounding-box diagonal count as short (directed mode).
+constexpr float kShortPair = 0.1f;
+
 // One order for both directions of a pair, so that d(s, t) and d(t, s) are the same number.
 bool endpointLess(const Endpoint& a, const Endpoint& b) {
     if (a.isVertex() != b.isVertex()) return a.isVertex();
@@ -47,8 +49,12 @@ bool sameEndpoint(const Endpoint& a, const Endpoint& b) { return !endpointLess(a
 
 namespace vg {
 
-float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float maxDistance, vg_search_mode mode,
-                   Meeting* how) {
+namespace {
+
+// One search (see the top of this file). *shortPair tells whether s and t are close: in
+// one first-layer patch, or nearer than kShortPair of the bounding-box diagonal.
+float search(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float maxDistance, vg_search_mode mode,
+             Meeting* how, bool* shortPair) {
     const float inf = __builtin_inff();
     Meeting scratch;
     Meeting& m = how ? *how : scratch;
@@ -99,9 +105,6 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, 
     });
 
     detailAround(g, s, ws.detail, gen);
-    // Two endpoints of one first-layer patch make a short query, searched from both ends
-    // even in the directed mode: their meeting in the middle unfolds the border crossing
-    // there, which matters most for short pairs, and both searches stay small.
     const bool oneFirstPatch = nearDetailed(g, t, ws.detail, gen);
     detailAround(g, t, ws.detail, gen);
     const Scope scope{ws.detail, gen};
@@ -110,7 +113,7 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, 
     const float* pt = t.position;
     landmarkDistances(g, s, ws.landmarkSource);
     landmarkDistances(g, t, ws.landmarkTarget);
-    const bool directed = mode == VG_SEARCH_DIRECTED && !oneFirstPatch;
+    const bool directed = mode == VG_SEARCH_DIRECTED;
     // Directed: the forward potential is the whole bound to t. Bidirectional: half of
     // (bound to t - bound to s), and its negation backward.
     auto potential = [&](uint32_t node) {
@@ -132,6 +135,7 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, 
     float bound = distance3(ps, pt);
     const float viaLandmarks = landmarkBound(g, ws.landmarkSource, ws.landmarkTarget);
     if (viaLandmarks > bound) bound = viaLandmarks;
+    if (shortPair) *shortPair = oneFirstPatch || bound < kShortPair * g.bboxDiagonal;
     const float keyMargin = directed ? 0.0f : 0.5f * bound;
     auto prune = [&](float key) { return key + keyMargin < kUnfoldSlack * best ? key : __builtin_inff(); };
     auto forwardKey = [&](uint32_t v, float dv) { return prune(dv + potential(v)); };
@@ -195,6 +199,22 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, 
         return inf;
     }
     return best;
+}
+
+}  // namespace
+
+float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float maxDistance, vg_search_mode mode,
+                   Meeting* how) {
+    if (mode != VG_SEARCH_DIRECTED || how != nullptr) return search(g, ws, s, t, maxDistance, mode, how, nullptr);
+    // A short pair is searched both ways and keeps the shorter answer: each search unfolds
+    // the border crossings where it meets (the directed one next to t, the bidirectional
+    // one in the middle), which for short pairs is a larger share of the distance, and
+    // both searches stay small there.
+    bool shortPair = false;
+    const float directed = search(g, ws, s, t, maxDistance, VG_SEARCH_DIRECTED, nullptr, &shortPair);
+    if (!shortPair) return directed;
+    const float both = search(g, ws, s, t, maxDistance, VG_SEARCH_BIDIRECTIONAL, nullptr, nullptr);
+    return both < directed ? both : directed;
 }
 
 }  // namespace vg

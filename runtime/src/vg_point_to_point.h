@@ -26,7 +26,9 @@ struct Meeting {
 };
 
 // Distance from s to t (+inf beyond maxDistance) by the given search (vg_distance.cpp);
-// with `how`, also how it was found.
+// with `how`, also how it was found, and then exactly that one search runs (the directed
+// mode's second, bidirectional search of a short pair would overwrite the labels `how`
+// refers to).
 float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float maxDistance,
                    vg_search_mode mode, Meeting* how = nullptr);
 

@@ -100,20 +100,16 @@ bool runAll(const std::vector<uint8_t>& blobBytes, const char* label) {
     ok = ok && wsBytes <= wsMemory.size() && check(vg_workspace_init(g, wsMemory.data(), wsBytes, &ws), "workspace");
     float d = 0, sum = 0;
     size_t index = 0;
-    for (uint32_t i = 0; ok && i < 200; ++i) {
-        ok = check(vg_distance(g, ws, (i * 7919u) % vg_vertex_count(g), (i * 104729u) % vg_vertex_count(g), &d),
-                   "vg_distance");
-        sum += d;
+    // Both point-to-point searches; the directed one (the default) stays set afterwards.
+    for (vg_search_mode mode : {VG_SEARCH_BIDIRECTIONAL, VG_SEARCH_DIRECTED}) {
+        ok = ok && check(vg_workspace_set_search(ws, mode), "vg_workspace_set_search");
+        for (uint32_t i = 0; ok && i < 200; ++i) {
+            ok = check(vg_distance(g, ws, (i * 7919u) % vg_vertex_count(g), (i * 104729u) % vg_vertex_count(g), &d),
+                       "vg_distance");
+            sum += d;
+        }
+        ok = ok && check(vg_distance_within(g, ws, 1, 1500, 0.5f, &d), "vg_distance_within");
     }
-    ok = ok && check(vg_distance_within(g, ws, 1, 1500, 0.5f, &d), "vg_distance_within");
-    ok = ok && check(vg_workspace_set_search(ws, VG_SEARCH_BIDIRECTIONAL), "vg_workspace_set_search");
-    for (uint32_t i = 0; ok && i < 50; ++i) {
-        ok = check(vg_distance(g, ws, (i * 7919u) % vg_vertex_count(g), (i * 104729u) % vg_vertex_count(g), &d),
-                   "vg_distance (bidirectional)");
-        sum += d;
-    }
-    ok = ok && check(vg_distance_within(g, ws, 1, 1500, 0.5f, &d), "vg_distance_within (bidirectional)");
-    ok = ok && check(vg_workspace_set_search(ws, VG_SEARCH_DIRECTED), "vg_workspace_set_search");
     ok = ok && check(vg_distance_field(g, ws, targets, 4, field.data()), "vg_distance_field");
     ok = ok && check(vg_distance_field_nearest(g, ws, targets, 4, field.data(), labels.data()),
                      "vg_distance_field_nearest");

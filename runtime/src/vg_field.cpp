@@ -4,67 +4,23 @@
 // unfolded crossing of the border edges at that best node (as vg_distance does where its
 // two searches meet).
 #include "vg_query.h"
+#include "vg_field_kernels.h"
 #include "vg_search.h"
 
 namespace {
 
 using namespace vg;
 
-// Lowers best[0..n) to base + the packed row entries k0.. (interior slots of a patch),
-// remembering which reached node gave each. The quanta are unpacked in chunks so that the
-// conversion and comparison loop is branch-free and vectorises.
-inline void lowerRow(const uint8_t* packed, uint64_t k0, uint32_t n, float base, float scale, uint32_t node,
-                     float* __restrict best, uint32_t* __restrict bestNode) {
-    constexpr uint32_t kChunk = 64;
-    uint32_t q[kChunk];
-    for (uint32_t j0 = 0; j0 < n; j0 += kChunk) {
-        const uint32_t m = n - j0 < kChunk ? n - j0 : kChunk;
-        unpackQuanta(packed, k0 + j0, m, q);
-        float* __restrict b = best + j0;
-        uint32_t* __restrict bn = bestNode + j0;
-        for (uint32_t x = 0; x < m; ++x) {
-            const float v = base + float(int32_t(q[x])) * scale, cur = b[x];
-            const bool lower = (v < cur) & (q[x] != kNoPathQuantum);
-            const uint32_t mask = 0u - uint32_t(lower);  // selects written as masks vectorise
-            b[x] = lower ? v : cur;
-            bn[x] = (node & mask) | (bn[x] & ~mask);
-        }
-    }
-}
-
-// Evaluates the gathered crossings and lowers each one's vertex to it: unfoldPoint and
-// crossingLength (vg_graph.h) written as one branch-free loop, the same operations in
-// the same order (so the same bits), with the failed cases masked to +inf at the end.
-void evaluateCrossings(CrossingBatch& batch, float* best) {
-    const float* __restrict A = batch.a;
-    const float* __restrict B = batch.b;
-    const float* __restrict C = batch.c;
-    const float* __restrict E = batch.e;
-    const float* __restrict L = batch.l;
-    const float* __restrict SX = batch.sx;
-    const float* __restrict SY = batch.sy;
-    float* __restrict out = batch.length;
-    const uint32_t n = batch.count;
-    for (uint32_t i = 0; i < n; ++i) {
-        const float c = C[i], e = E[i], l = L[i], sx = SX[i], sy = SY[i];
-        // The target point (unfoldPoint(c, e, l)); l > 0 for every gathered edge.
-        const float tx = (c * c - e * e + l * l) * (0.5f / l);
-        const float y2 = c * c - tx * tx;
-        const bool unfolds = y2 > 0.0f;
-        const float ty = __builtin_sqrtf(unfolds ? y2 : 1.0f);
-        // The segment to it (crossingLength).
-        const float x = sx + (tx - sx) * (sy / (sy + ty));
-        const bool meets = (x > 0.0f) & (x < l);
-        const float dx = tx - sx, dy = ty + sy;
-        const float d = __builtin_sqrtf(dx * dx + dy * dy);
-        const float viaU = A[i] + c, viaW = B[i] + e;
-        const float viaNode = (viaU < viaW ? viaU : viaW) / kUnfoldSlack;
-        const float length = d < viaNode ? viaNode : d;
-        out[i] = unfolds & meets ? length : __builtin_inff();
-    }
-    for (uint32_t i = 0; i < n; ++i) {
-        float& o = best[batch.vertex[i]];
-        if (out[i] < o) o = out[i];
+// Evaluates the gathered crossings and lowers each one's vertex to it.
+void lowerByCrossings(const vg_graph& g, vg_workspace& ws) {
+    CrossingBatch& batch = ws.crossings;
+    crossBatch(g.avx2, batch);
+    float* __restrict best = ws.patchBest;
+    const float* __restrict length = batch.length;
+    const uint32_t* __restrict vertex = batch.vertex;
+    for (uint32_t i = 0, n = batch.count; i < n; ++i) {
+        const float o = best[vertex[i]], d = length[i];
+        best[vertex[i]] = d < o ? d : o;
     }
     batch.count = 0;
 }
@@ -72,62 +28,88 @@ void evaluateCrossings(CrossingBatch& batch, float* best) {
 // The path to an interior vertex may cross the border on an edge next to its best node
 // rather than at the node. The source side of each such edge (its unfolded source point)
 // is the same for every vertex of the patch, so it is computed once per edge here, for
-// the nodes that are some vertex's best. (Crossing edges join nodes of the best node's
-// source, so the nearest source stays.)
-void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_workspace& ws,
-                       uint32_t reached) {
+// the nodes that are some vertex's best; then every vertex meets the edges of its best
+// node in one batch (crossBatch). Crossing edges join nodes of the best node's source, so
+// the nearest source stays.
+void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws, uint32_t reached) {
     const Patch& p = g.second[patchIndex];
     const uint32_t* slots = g.slots + p.slotBegin;
-    const uint32_t interior = p.slotCount - p.nodeCount;
-    CrossingEdge* edges = ws.patchEdges;
-    uint32_t* begin = ws.patchEdgeBegin;
-    for (uint32_t r = 0; r < reached; ++r) begin[r] = 0;  // first as a flag: "is some vertex's best"
+    const uint32_t interior = p.slotCount - p.nodeCount, stride = interiorStride(interior);
+    const uint32_t* bestNode = ws.patchBestNode;
+    // The interior slots grouped by their best node (a counting sort).
+    uint32_t* memberBegin = ws.patchMemberBegin;
+    for (uint32_t r = 0; r <= reached; ++r) memberBegin[r] = 0;
     for (uint32_t j = 0; j < interior; ++j)
-        if (ws.patchBestNode[j] != kNone) begin[ws.patchBestNode[j]] = 1;
-    uint32_t count = 0;
-    for (uint32_t r = 0; r < reached; ++r) {
-        const bool used = begin[r] != 0;
-        begin[r] = count;
-        if (!used) continue;
-        const uint32_t u = slots[ws.patchNodeSlot[r]];
-        const float a = ws.patchNodeDistance[r];
-        for (uint32_t e = g.nodeEdgeBegin[u]; e < g.nodeEdgeBegin[u + 1] && count < kMaxPatchEdges; ++e) {
-            const uint32_t w = g.nodeEdge[e];
-            // Both ends must be reached from the same source for one unfolded path.
-            if (!nodeActive(g, w) || !f.labelled(w) || f.route[w].origin != f.route[u].origin) continue;
-            const uint32_t slot = ws.nodeSlotInPatch[w];
-            if (slot == kNone) continue;
-            const float b = f.label[w].dist, l = euclidean(g, g.nodeVertex[u], g.nodeVertex[w]);
-            UnfoldedPoint source;
-            if (unfoldPoint(a, b, l, source))
-                edges[count++] = CrossingEdge{rowStart(p, slot) - (slot + 1) + p.nodeCount, l, b, source};
-        }
-    }
-    begin[reached] = count;
+        if (bestNode[j] != kNone) ++memberBegin[bestNode[j] + 1];
+    for (uint32_t r = 0; r < reached; ++r) memberBegin[r + 1] += memberBegin[r];
+    uint32_t* members = ws.patchMembers;
+    for (uint32_t j = 0; j < interior; ++j)
+        if (bestNode[j] != kNone) members[memberBegin[bestNode[j]]++] = j;
+    for (uint32_t r = reached; r > 0; --r) memberBegin[r] = memberBegin[r - 1];  // back to the starts
+    memberBegin[0] = 0;
+
+    CrossingEdge* edges = ws.patchEdges;
     CrossingBatch& batch = ws.crossings;
     batch.count = 0;
-    for (uint32_t j = 0; j < interior; ++j) {
-        const uint32_t r = ws.patchBestNode[j];
-        if (r == kNone || begin[r] == begin[r + 1]) continue;
+    uint32_t decoded = reached;  // rows in patchEntries: the reached nodes', then those decoded here
+    for (uint32_t r = 0; r < reached; ++r) {
+        if (memberBegin[r] == memberBegin[r + 1]) continue;
+        const uint32_t slotU = ws.patchNodeSlot[r], u = slots[slotU];
         const float a = ws.patchNodeDistance[r];
-        const float c = float(quantum(g.secondDistances, ws.patchNodeRow[r] + j)) * p.scale;
-        for (uint32_t k = begin[r]; k < begin[r + 1]; ++k) {
-            const CrossingEdge& E = edges[k];
-            const uint32_t q = quantum(g.secondDistances, E.row + j);
-            if (q == kNoPathQuantum) continue;
-            if (batch.count == kCrossingChunk) evaluateCrossings(batch, ws.patchBest);
-            const uint32_t i = batch.count++;
-            batch.a[i] = a;
-            batch.b[i] = E.b;
-            batch.c[i] = c;
-            batch.e[i] = float(q) * p.scale;
-            batch.l[i] = E.length;
-            batch.sx[i] = E.source.x;
-            batch.sy[i] = E.source.y;
-            batch.vertex[i] = j;
+        const float* pu = g.positions + 3 * uint64_t(g.nodeVertex[u]);
+        uint32_t count = 0;
+        for (uint32_t e = g.nodeEdgeBegin[u]; e < g.nodeEdgeBegin[u + 1] && count < kMaxPatchEdges; ++e) {
+            const uint32_t w = g.nodeEdge[e];
+            const uint32_t slot = ws.nodeSlotInPatch[w];
+            // Both ends must be reached from the same source for one unfolded path.
+            if (slot == kNone || ws.slotLabel[slot] == __builtin_inff() || ws.slotOrigin[slot] != ws.slotOrigin[slotU])
+                continue;
+            const float* pw = g.positions + 3 * uint64_t(g.nodeVertex[w]);
+            const float dx = pu[0] - pw[0], dy = pu[1] - pw[1], dz = pu[2] - pw[2];
+            const float l = __builtin_sqrtf(dx * dx + dy * dy + dz * dz);  // euclidean() of vg_graph.h
+            const float b = ws.slotLabel[slot];
+            UnfoldedPoint source;
+            if (!unfoldPoint(a, b, l, source)) continue;
+            if (ws.slotEntries[slot] == kNone) {
+                ws.slotEntries[slot] = decoded;
+                decodeInteriorRow(g.avx2, g, p, rowStart(p, slot) - (slot + 1) + p.nodeCount,
+                                  ws.patchEntries + uint64_t(decoded++) * stride);
+            }
+            edges[count++] = CrossingEdge{ws.patchEntries + uint64_t(ws.slotEntries[slot]) * stride, b, l, source};
+        }
+        const float* c = ws.patchEntries + uint64_t(r) * stride;
+        const uint32_t mBegin = memberBegin[r], mEnd = memberBegin[r + 1];
+        for (uint32_t k = 0; k < count; ++k) {
+            const CrossingEdge E = edges[k];
+            const float ll = E.length * E.length, half = 0.5f / E.length;
+            for (uint32_t m0 = mBegin; m0 < mEnd;) {
+                if (batch.count == kCrossingChunk) lowerByCrossings(g, ws);
+                const uint32_t room = kCrossingChunk - batch.count, n = mEnd - m0 < room ? mEnd - m0 : room;
+                const uint32_t i0 = batch.count;
+                float *__restrict A = batch.a + i0, *__restrict B = batch.b + i0, *__restrict C = batch.c + i0;
+                float *__restrict Ev = batch.e + i0, *__restrict L = batch.l + i0, *__restrict LL = batch.ll + i0;
+                float *__restrict H = batch.half + i0, *__restrict SX = batch.sx + i0, *__restrict SY = batch.sy + i0;
+                uint32_t* __restrict V = batch.vertex + i0;
+                const uint32_t* __restrict J = members + m0;
+                for (uint32_t i = 0; i < n; ++i) {
+                    const uint32_t j = J[i];
+                    A[i] = a;
+                    B[i] = E.b;
+                    C[i] = c[j];
+                    Ev[i] = E.entries[j];
+                    L[i] = E.length;
+                    LL[i] = ll;
+                    H[i] = half;
+                    SX[i] = E.source.x;
+                    SY[i] = E.source.y;
+                    V[i] = j;
+                }
+                batch.count += n;
+                m0 += n;
+            }
         }
     }
-    evaluateCrossings(batch, ws.patchBest);
+    lowerByCrossings(g, ws);
 }
 
 // Vertices of one patch that are not active nodes: best over its reached active nodes
@@ -143,24 +125,24 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
         best[j] = __builtin_inff();
         bestNode[j] = kNone;
     }
+    // The node slots' labels, read once (the search left them all over the label array).
     uint32_t reached = 0;
     for (uint32_t i = 0; i < p.nodeCount; ++i) {
         const uint32_t n = slots[i];
+        const bool usable = nodeActive(g, n) && f.labelled(n);
+        ws.slotLabel[i] = usable ? f.label[n].dist : __builtin_inff();
+        ws.slotOrigin[i] = usable ? f.route[n].origin : kNone;
+        ws.nodeSlotInPatch[n] = i;
+        ws.slotEntries[i] = kNone;
         // A node labelled through this patch's own row is no better start than the node
         // it came from (patch distances obey the triangle inequality): skip it.
-        if (nodeActive(g, n) && f.labelled(n) && f.route[n].via != patchIndex) {
+        if (usable && f.route[n].via != patchIndex) {
             ws.patchNodeSlot[reached] = i;
-            ws.patchNodeDistance[reached] = f.label[n].dist;
+            ws.slotEntries[i] = reached;
+            ws.patchNodeDistance[reached] = ws.slotLabel[i];
             ws.patchNodeRow[reached] = rowStart(p, i) - (i + 1) + p.nodeCount;
             ++reached;
         }
-    }
-    // The search's distances of the nodes this patch is home to (each node has one).
-    for (uint32_t i = 0; i < p.nodeCount; ++i) {
-        const uint32_t n = slots[i], v = g.nodeVertex[n];
-        if (!nodeActive(g, n) || !f.labelled(n) || g.vertexPatch[v] != patchIndex) continue;
-        out[v] = f.label[n].dist;
-        if (nearest) nearest[v] = f.route[n].origin;
     }
     // Merged-away nodes (slots before the interior ones) take the best reached node too.
     for (uint32_t j = 0; j < p.nodeCount; ++j) {
@@ -175,17 +157,28 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
             }
         }
     }
-    for (uint32_t r = 0; r < reached; ++r)
-        lowerRow(g.secondDistances, ws.patchNodeRow[r], interior, ws.patchNodeDistance[r], p.scale, r, best, bestNode);
-    for (uint32_t i = 0; i < p.nodeCount; ++i) ws.nodeSlotInPatch[slots[i]] = i;
-    unfoldAtBestNodes(g, patchIndex, f, ws, reached);
+    lowerInteriorFromRows(g.avx2, g, p, ws.patchNodeRow, ws.patchNodeDistance, reached, best, bestNode,
+                          ws.patchEntries, interiorStride(interior));
+    unfoldAtBestNodes(g, patchIndex, ws, reached);
     for (uint32_t i = 0; i < p.nodeCount; ++i) ws.nodeSlotInPatch[slots[i]] = kNone;
     for (uint32_t j = 0; j < interior; ++j) {
         const uint32_t v = slots[p.nodeCount + j];
         if (best[j] < out[v]) {
             out[v] = best[j];
-            if (nearest) nearest[v] = f.route[slots[ws.patchNodeSlot[bestNode[j]]]].origin;
+            if (nearest) nearest[v] = ws.slotOrigin[ws.patchNodeSlot[bestNode[j]]];
         }
+    }
+}
+
+// The search's distances of the nodes, a chunk per step (each node once, at its own vertex).
+constexpr uint32_t kNodesPerStep = 256;
+
+void writeNodes(const vg_graph& g, const Frontier& f, uint32_t first, float* out, uint32_t* nearest) {
+    const uint32_t end = g.nodeCount - first < kNodesPerStep ? g.nodeCount : first + kNodesPerStep;
+    for (uint32_t n = first; n < end; ++n) {
+        if (!nodeActive(g, n) || !f.labelled(n)) continue;
+        out[g.nodeVertex[n]] = f.label[n].dist;
+        if (nearest) nearest[g.nodeVertex[n]] = f.route[n].origin;
     }
 }
 
@@ -224,44 +217,38 @@ void beginPatchSearch(const vg_graph& g, vg_workspace& ws) {
 }
 
 // Relaxes, inside patch `patchIndex`, every node label it has not relaxed yet; the nodes
-// whose labels drop tell their other patches.
+// whose labels drop tell their other patches. One source takes its own row (a column walk
+// up to the diagonal of the stored upper triangle, then a run after it); several take one
+// pass over the triangle (relaxNodeBlock). Either way every node ends at the smallest
+// label + entry, from the first source (in slot order) that gives it.
 void visitPatch(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws) {
     Frontier& f = ws.forward;
     const Patch& p = g.second[patchIndex];
     const uint32_t n = p.nodeCount;
     const uint32_t* slots = g.slots + p.slotBegin;
     float* sent = ws.slotSent + p.slotBegin;
-    float* label = ws.patchNodeDistance;  // per node slot: its label on arrival
-    float* best = ws.patchBest;           // ... the best found here
-    uint32_t* from = ws.patchBestNode;    // ... and the slot whose row gave it
-    uint32_t* sources = ws.patchNodeSlot;
-    uint32_t* q = ws.rowQuanta;
-    uint32_t sourceCount = 0;
+    float* src = ws.patchNodeDistance;  // per node slot: its label when it is a source, else +inf
+    float* best = ws.patchBest;         // ... the best found here
+    uint32_t* from = ws.patchBestNode;  // ... and the slot whose row gave it
+    uint32_t sourceCount = 0, lastSource = 0;
     for (uint32_t j = 0; j < n; ++j) {
         const uint32_t v = slots[j];
         const bool active = nodeActive(g, v), labelled = f.labelled(v);
-        label[j] = labelled ? f.label[v].dist : __builtin_inff();
-        best[j] = active ? label[j] : -__builtin_inff();  // a merged-away node never takes a label
+        const float label = labelled ? f.label[v].dist : __builtin_inff();
+        best[j] = active ? label : -__builtin_inff();  // a merged-away node never takes a label
         from[j] = kNone;
-        if (active && labelled && label[j] < sent[j]) {
-            sources[sourceCount++] = j;
-            sent[j] = label[j];
+        const bool source = active && labelled && label < sent[j];
+        src[j] = source ? label : __builtin_inff();
+        if (source) {
+            sent[j] = label;
+            lastSource = j;
+            ++sourceCount;
         }
     }
-    for (uint32_t k = 0; k < sourceCount; ++k) {
-        const uint32_t i = sources[k];
-        // Row i over the node slots: column i above the diagonal, then row i after it.
-        uint64_t e = p.matrixBegin + i - 1;
-        for (uint32_t j = 0; j < i; e += p.slotCount - j - 2, ++j) q[j] = quantum(g.secondDistances, e);
-        q[i] = kNoPathQuantum;
-        if (i + 1 < n) unpackQuanta(g.secondDistances, rowStart(p, i), n - i - 1, q + i + 1);
-        const float du = label[i], scale = p.scale;
-        for (uint32_t j = 0; j < n; ++j) {  // branch-free: it vectorises
-            const float d = du + float(int32_t(q[j])) * scale;
-            const bool lower = (d < best[j]) & (q[j] != kNoPathQuantum);
-            best[j] = lower ? d : best[j];
-            from[j] = lower ? i : from[j];
-        }
+    if (sourceCount == 1) {
+        relaxNodeSource(g.avx2, g, p, lastSource, src[lastSource], best, from);
+    } else if (sourceCount > 1) {
+        relaxNodeBlock(g.avx2, g, p, lastSource, src, ws.slotLabel, best, from);
     }
     for (uint32_t j = 0; j < n; ++j) {
         if (from[j] == kNone) continue;
@@ -272,7 +259,7 @@ void visitPatch(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws) {
     }
 }
 
-enum Phase : uint32_t { Search = 0, Fill = 1, Direct = 2, Done = 3 };
+enum Phase : uint32_t { Search = 0, Nodes = 1, Fill = 2, Direct = 3, Done = 4 };
 
 // Source i of the query as an endpoint; false for a vertex used by no face.
 bool sourceEndpoint(const vg_graph& g, const FieldSlice& s, size_t i, Endpoint& e) {
@@ -324,6 +311,14 @@ bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget) {
         if (s.phase == Search) {
             if (!ws.patchQueue.empty()) {
                 visitPatch(g, ws.patchQueue.pop(), ws);
+                continue;
+            }
+            s.phase = Nodes;
+            s.next = 0;
+        } else if (s.phase == Nodes) {
+            if (s.next < g.nodeCount) {
+                writeNodes(g, F, s.next, out, nearest);
+                s.next += kNodesPerStep;
                 continue;
             }
             s.phase = Fill;

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "vg_graph.h"
+#include "vg_field_kernels.h"
 #include "vg_validate.h"
 #include "vorogeo_container.h"
 
@@ -126,6 +127,7 @@ extern "C" vg_status vg_open(const void* blob, size_t blob_size, void* memory, s
     graph->fileMemory = nullptr;
     graph->fileMapping = nullptr;
     graph->fileMappingSize = 0;
+    graph->avx2 = vg::cpuHasAvx2();
     *out_graph = graph;
     return VG_OK;
 }

@@ -174,6 +174,7 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& 
     out.first = rawStructs<Patch>(g->first_patches());
     out.slots = raw(g->slots());
     out.secondDistances = raw(g->second_distances());
+    out.secondDistancesEnd = out.secondDistances + count(g->second_distances());
     out.firstDistances = raw(g->first_distances());
 
     if (!aligned(out.positions) || !aligned(out.vertexPatch) || !aligned(out.vertexSlot) ||

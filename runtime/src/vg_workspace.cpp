@@ -3,6 +3,7 @@
 #include "vg_workspace.h"
 
 #include "vg_path_taut.h"
+#include "vg_field_kernels.h"
 
 #include <string.h>
 
@@ -19,6 +20,18 @@ uint64_t secondNodeSlotEnd(const vg_graph& g) {
         if (e > end) end = e;
     }
     return end;
+}
+
+// Floats for one patch's decoded node rows over its interior slots (vg_field.cpp), plus the
+// kernels' slack.
+uint64_t patchEntriesCapacity(const vg_graph& g) {
+    uint64_t most = 0;
+    for (uint32_t i = 0; i < g.secondCount; ++i) {
+        const vg::Patch& p = g.second[i];
+        const uint64_t need = uint64_t(p.nodeCount) * vg::interiorStride(p.slotCount - p.nodeCount);
+        if (need > most) most = need;
+    }
+    return most + vg::kRowSlack;
 }
 
 struct Layout {
@@ -55,15 +68,23 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.vertexNextTarget = L.take<uint32_t>(V);
     o.vertexTargetIndex = L.take<uint32_t>(V);
     o.vertexStamp = L.take<uint32_t>(V);
-    o.patchNodeDistance = L.take<float>(kMaxPatchSlots);
+    // The row kernels read and write whole vectors up to kRowSlack entries past a patch.
+    o.patchNodeDistance = L.take<float>(kMaxPatchSlots + vg::kRowSlack);
     o.patchNodeSlot = L.take<uint32_t>(kMaxPatchSlots);
     o.patchNodeRow = L.take<uint64_t>(kMaxPatchSlots);
-    o.patchBest = L.take<float>(kMaxPatchSlots);
-    o.patchBestNode = L.take<uint32_t>(kMaxPatchSlots);
+    o.patchBest = L.take<float>(kMaxPatchSlots + vg::kRowSlack);
+    o.patchBestNode = L.take<uint32_t>(kMaxPatchSlots + vg::kRowSlack);
+    o.slotLabel = L.take<float>(kMaxPatchSlots);
+    o.slotOrigin = L.take<uint32_t>(kMaxPatchSlots);
     o.patchEdgeBegin = L.take<uint32_t>(kMaxPatchSlots + 1);
     o.patchEdges = L.take<vg::CrossingEdge>(vg::kMaxPatchEdges);
-    float** crossingArrays[] = {&o.crossings.a, &o.crossings.b,  &o.crossings.c,  &o.crossings.e,
-                                &o.crossings.l, &o.crossings.sx, &o.crossings.sy, &o.crossings.length};
+    o.patchMemberBegin = L.take<uint32_t>(kMaxPatchSlots + 1);
+    o.patchMembers = L.take<uint32_t>(kMaxPatchSlots);
+    o.slotEntries = L.take<uint32_t>(kMaxPatchSlots);
+    o.patchEntries = L.take<float>(patchEntriesCapacity(g));
+    float** crossingArrays[] = {&o.crossings.a,  &o.crossings.b,  &o.crossings.c,    &o.crossings.e,
+                                &o.crossings.l,  &o.crossings.ll, &o.crossings.half, &o.crossings.sx,
+                                &o.crossings.sy, &o.crossings.length};
     for (float** array : crossingArrays) *array = L.take<float>(vg::kCrossingChunk);
     o.crossings.vertex = L.take<uint32_t>(vg::kCrossingChunk);
     o.crossings.count = 0;
@@ -72,7 +93,6 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.patchQueue.heap = L.take<vg::HeapEntry>(g.secondCount);
     o.patchQueue.size = 0;
     o.slotSent = L.take<float>(secondNodeSlotEnd(g));
-    o.rowQuanta = L.take<uint32_t>(kMaxPatchSlots);
     o.targetEndpoints = L.take<vg::Endpoint>(vg::kTargetChunk);
     o.pathNodes = L.take<uint32_t>(N + 1);
     o.pathLegs = L.take<vg::PathLeg>(vg::maxPathLegs(N));

@@ -4,6 +4,7 @@
 // clears arrays (one increment per query; a full reset once every 2^32 queries).
 #pragma once
 
+#include "vg_field_kernels.h"
 #include "vg_point.h"
 
 namespace vg {
@@ -16,26 +17,6 @@ struct Apex;
 constexpr uint32_t kMaxPatchSlots = 65536;  // slots per patch (vertex slots are 16-bit)
 constexpr uint32_t kMaxPatchEdges = 4096;  // border edges unfolded per patch (more are skipped)
 constexpr uint32_t kTargetChunk = 2048;    // surface-point targets resolved at once (k-nearest)
-
-// A border edge of the patch being filled, from a reached node to a neighbour node: the
-// neighbour's slot, the edge length, the neighbour's distance and the unfolded source
-// point (the same for every vertex of the patch, so computed once).
-struct CrossingEdge {
-    uint64_t row;  // packed index of the neighbour's entry for the patch's first interior slot
-    float length, b;
-    UnfoldedPoint source;
-};
-
-// Crossings to evaluate, gathered per patch in chunks so that the arithmetic (two square
-// roots and two divisions each) runs as one branch-free loop the compiler vectorises:
-// per crossing, the distances a = d(s, u), b = d(s, w), c = d(t, u), e = d(t, w), the
-// edge length l and the unfolded source point; `vertex` is t's interior slot.
-constexpr uint32_t kCrossingChunk = 1024;
-struct CrossingBatch {
-    float *a, *b, *c, *e, *l, *sx, *sy, *length;  // length: the result, +inf when none
-    uint32_t* vertex;
-    uint32_t count;
-};
 
 struct Potential {
     float value;
@@ -184,8 +165,8 @@ private:
 // generation is the workspace's: any other query on the workspace abandons it.
 struct FieldSlice {
     uint32_t generation;  // 0: none started
-    uint32_t phase;       // 0: search, 1: fill patches, 2: sources' own patches, 3: done
-    uint32_t next;        // next patch (Fill) or source (Direct)
+    uint32_t phase;       // 0: search, 1: node distances, 2: fill patches, 3: sources' own patches, 4: done
+    uint32_t next;        // next node (Nodes), patch (Fill) or source (Direct)
     const uint32_t* sources;  // vertex sources, or NULL ...
     const vg_point* points;   // ... for surface-point sources
     size_t sourceCount;
@@ -215,13 +196,18 @@ struct vg_workspace {
     uint64_t* patchNodeRow;        // per reached node: packed index of its first interior entry
     float* patchBest;              // per interior slot of one patch: best distance so far
     uint32_t* patchBestNode;       // per interior slot of one patch: index of its best node
+    float* slotLabel;              // per node slot of one patch: its label (+inf: none, or merged away)
+    uint32_t* slotOrigin;          // ... and the source it came from
     uint32_t* patchEdgeBegin;      // per reached node of one patch: first of its crossing edges
     vg::CrossingEdge* patchEdges;
+    uint32_t* patchMemberBegin;    // per reached node of one patch: first interior slot it is best for ...
+    uint32_t* patchMembers;        // ... in these lists
+    uint32_t* slotEntries;         // per node slot of one patch: its row in patchEntries, else kNone
+    float* patchEntries;           // node rows over a patch's interior slots, decoded (patchEntriesStride apart)
     vg::CrossingBatch crossings;   // one-to-all fill: crossings being evaluated
     uint32_t* nodeSlotInPatch;     // per node: its slot in the patch being filled, else kNone
     vg::PatchQueue patchQueue;     // one-to-all search: patches with news ...
     float* slotSent;               // ... and per node slot: the label last relaxed through that patch
-    uint32_t* rowQuanta;           // one patch row, unpacked (kMaxPatchSlots)
     vg::Endpoint* targetEndpoints; // kTargetChunk resolved targets (vg_point_k_nearest)
     uint32_t* pathNodes;           // N + 1: a node chain being read off (vg_path)
     vg::PathLeg* pathLegs;         // kMaxPathLegs(N): the route's legs, then ...

@@ -43,7 +43,7 @@ BakeEstimate estimateBake(uint64_t vertices, const BakeOptions& o) {
     const double exactFirst = o.exactFirstLayer ? 2.0 : 1.0;
     const double margin = 1.15;
     const double peakPerVertex = margin * (1700.0 + 4.5 * s2 + 0.12 * s1 * exactFirst);
-    const double fbPerVertex = margin * (135.0 + 0.62 * s2 + 0.006 * s1);
+    const double fbPerVertex = margin * (165.0 + 0.62 * s2 + 0.006 * s1);  // +30: whole node rows (format 4)
     BakeEstimate e;
     e.peakBytes = uint64_t(32.0 * 1024 * 1024 + V * peakPerVertex);
     e.flatbufferBytes = uint64_t(4096.0 + V * fbPerVertex);

@@ -1,4 +1,4 @@
-/* The vorogeo blob container (format version 3), shared by the baker and the runtime.
+/* The vorogeo blob container (format version 4), shared by the baker and the runtime.
  *
  *   offset  size  field
  *        0     8  magic "VOROGEO\0"
@@ -20,7 +20,7 @@
 
 #define VG_CONTAINER_MAGIC "VOROGEO"
 #define VG_CONTAINER_HEADER_SIZE 40u
-#define VG_FORMAT_VERSION 3u
+#define VG_FORMAT_VERSION 4u
 #define VG_FLAG_ZSTD 1u
 
 static inline uint64_t vg_load_le64(const unsigned char* p) {

@@ -11,30 +11,16 @@ namespace {
 
 using namespace vg;
 
-// Evaluates the gathered crossings and lowers each one's vertex to it.
-void lowerByCrossings(const vg_graph& g, vg_workspace& ws) {
-    CrossingBatch& batch = ws.crossings;
-    crossBatch(g.avx2, batch);
-    float* __restrict best = ws.patchBest;
-    const float* __restrict length = batch.length;
-    const uint32_t* __restrict vertex = batch.vertex;
-    for (uint32_t i = 0, n = batch.count; i < n; ++i) {
-        const float o = best[vertex[i]], d = length[i];
-        best[vertex[i]] = d < o ? d : o;
-    }
-    batch.count = 0;
-}
-
 // The path to an interior vertex may cross the border on an edge next to its best node
 // rather than at the node. The source side of each such edge (its unfolded source point)
 // is the same for every vertex of the patch, so it is computed once per edge here, for
-// the nodes that are some vertex's best; then every vertex meets the edges of its best
-// node in one batch (crossBatch). Crossing edges join nodes of the best node's source, so
-// the nearest source stays.
+// the nodes that are some vertex's best; then each vertex takes the edges of its best node
+// (lowerByCrossings). Crossing edges join nodes of the best node's source, so the nearest
+// source stays.
 void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws, uint32_t reached) {
     const Patch& p = g.second[patchIndex];
     const uint32_t* slots = g.slots + p.slotBegin;
-    const uint32_t interior = p.slotCount - p.nodeCount, stride = interiorStride(interior);
+    const uint32_t interior = p.slotCount - p.nodeCount, stride = entriesStride(interior);
     const uint32_t* bestNode = ws.patchBestNode;
     // The interior slots grouped by their best node (a counting sort).
     uint32_t* memberBegin = ws.patchMemberBegin;
@@ -49,8 +35,6 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws,
     memberBegin[0] = 0;
 
     CrossingEdge* edges = ws.patchEdges;
-    CrossingBatch& batch = ws.crossings;
-    batch.count = 0;
     uint32_t decoded = reached;  // rows in patchEntries: the reached nodes', then those decoded here
     for (uint32_t r = 0; r < reached; ++r) {
         if (memberBegin[r] == memberBegin[r + 1]) continue;
@@ -72,44 +56,14 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws,
             if (!unfoldPoint(a, b, l, source)) continue;
             if (ws.slotEntries[slot] == kNone) {
                 ws.slotEntries[slot] = decoded;
-                decodeInteriorRow(g.avx2, g, p, rowStart(p, slot) - (slot + 1) + p.nodeCount,
-                                  ws.patchEntries + uint64_t(decoded++) * stride);
+                decodeRow(g.avx2, g, p.scale, nodeRowStart(p, slot) + p.nodeCount, interior,
+                          ws.patchEntries + uint64_t(decoded++) * stride);
             }
-            edges[count++] = CrossingEdge{ws.patchEntries + uint64_t(ws.slotEntries[slot]) * stride, b, l, source};
+            edges[count++] = CrossingEdge{ws.slotEntries[slot] * stride, b, l, l * l, 0.5f / l, source};
         }
-        const float* c = ws.patchEntries + uint64_t(r) * stride;
-        const uint32_t mBegin = memberBegin[r], mEnd = memberBegin[r + 1];
-        for (uint32_t k = 0; k < count; ++k) {
-            const CrossingEdge E = edges[k];
-            const float ll = E.length * E.length, half = 0.5f / E.length;
-            for (uint32_t m0 = mBegin; m0 < mEnd;) {
-                if (batch.count == kCrossingChunk) lowerByCrossings(g, ws);
-                const uint32_t room = kCrossingChunk - batch.count, n = mEnd - m0 < room ? mEnd - m0 : room;
-                const uint32_t i0 = batch.count;
-                float *__restrict A = batch.a + i0, *__restrict B = batch.b + i0, *__restrict C = batch.c + i0;
-                float *__restrict Ev = batch.e + i0, *__restrict L = batch.l + i0, *__restrict LL = batch.ll + i0;
-                float *__restrict H = batch.half + i0, *__restrict SX = batch.sx + i0, *__restrict SY = batch.sy + i0;
-                uint32_t* __restrict V = batch.vertex + i0;
-                const uint32_t* __restrict J = members + m0;
-                for (uint32_t i = 0; i < n; ++i) {
-                    const uint32_t j = J[i];
-                    A[i] = a;
-                    B[i] = E.b;
-                    C[i] = c[j];
-                    Ev[i] = E.entries[j];
-                    L[i] = E.length;
-                    LL[i] = ll;
-                    H[i] = half;
-                    SX[i] = E.source.x;
-                    SY[i] = E.source.y;
-                    V[i] = j;
-                }
-                batch.count += n;
-                m0 += n;
-            }
-        }
+        lowerByCrossings(g.avx2, ws.patchEntries, a, ws.patchEntries + uint64_t(r) * stride, edges, count,
+                         members + memberBegin[r], memberBegin[r + 1] - memberBegin[r], ws.patchBest);
     }
-    lowerByCrossings(g, ws);
 }
 
 // Vertices of one patch that are not active nodes: best over its reached active nodes
@@ -140,7 +94,7 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
             ws.patchNodeSlot[reached] = i;
             ws.slotEntries[i] = reached;
             ws.patchNodeDistance[reached] = ws.slotLabel[i];
-            ws.patchNodeRow[reached] = rowStart(p, i) - (i + 1) + p.nodeCount;
+            ws.patchNodeRow[reached] = nodeRowStart(p, i) + p.nodeCount;
             ++reached;
         }
     }
@@ -157,8 +111,8 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
             }
         }
     }
-    lowerInteriorFromRows(g.avx2, g, p, ws.patchNodeRow, ws.patchNodeDistance, reached, best, bestNode,
-                          ws.patchEntries, interiorStride(interior));
+    lowerFromRows(g.avx2, g, p.scale, ws.patchNodeRow, ws.patchNodeDistance, nullptr, reached, interior, best,
+                  bestNode, ws.patchEntries, entriesStride(interior));
     unfoldAtBestNodes(g, patchIndex, ws, reached);
     for (uint32_t i = 0; i < p.nodeCount; ++i) ws.nodeSlotInPatch[slots[i]] = kNone;
     for (uint32_t j = 0; j < interior; ++j) {
@@ -216,40 +170,36 @@ void beginPatchSearch(const vg_graph& g, vg_workspace& ws) {
     }
 }
 
-// Relaxes, inside patch `patchIndex`, every node label it has not relaxed yet; the nodes
-// whose labels drop tell their other patches. One source takes its own row (a column walk
-// up to the diagonal of the stored upper triangle, then a run after it); several take one
-// pass over the triangle (relaxNodeBlock). Either way every node ends at the smallest
-// label + entry, from the first source (in slot order) that gives it.
+// Relaxes, inside patch `patchIndex`, every node label it has not relaxed yet (each such
+// source lowers the others by its row); the nodes whose labels drop tell their other
+// patches. Every node ends at the smallest label + entry, from the first source in slot
+// order that gives it.
 void visitPatch(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws) {
     Frontier& f = ws.forward;
     const Patch& p = g.second[patchIndex];
     const uint32_t n = p.nodeCount;
     const uint32_t* slots = g.slots + p.slotBegin;
     float* sent = ws.slotSent + p.slotBegin;
-    float* src = ws.patchNodeDistance;  // per node slot: its label when it is a source, else +inf
-    float* best = ws.patchBest;         // ... the best found here
-    uint32_t* from = ws.patchBestNode;  // ... and the slot whose row gave it
-    uint32_t sourceCount = 0, lastSource = 0;
+    float* best = ws.patchBest;            // per node slot: the best found here
+    uint32_t* from = ws.patchBestNode;     // ... and the source slot whose row gave it
+    uint32_t* sources = ws.patchNodeSlot;  // the sources' slots, labels and rows
+    float* labels = ws.patchNodeDistance;
+    uint64_t* rows = ws.patchNodeRow;
+    uint32_t sourceCount = 0;
     for (uint32_t j = 0; j < n; ++j) {
         const uint32_t v = slots[j];
         const bool active = nodeActive(g, v), labelled = f.labelled(v);
         const float label = labelled ? f.label[v].dist : __builtin_inff();
         best[j] = active ? label : -__builtin_inff();  // a merged-away node never takes a label
         from[j] = kNone;
-        const bool source = active && labelled && label < sent[j];
-        src[j] = source ? label : __builtin_inff();
-        if (source) {
+        if (active && labelled && label < sent[j]) {
             sent[j] = label;
-            lastSource = j;
-            ++sourceCount;
+            sources[sourceCount] = j;
+            labels[sourceCount] = label;
+            rows[sourceCount++] = nodeRowStart(p, j);
         }
     }
-    if (sourceCount == 1) {
-        relaxNodeSource(g.avx2, g, p, lastSource, src[lastSource], best, from);
-    } else if (sourceCount > 1) {
-        relaxNodeBlock(g.avx2, g, p, lastSource, src, ws.slotLabel, best, from);
-    }
+    lowerFromRows(g.avx2, g, p.scale, rows, labels, sources, sourceCount, n, best, from, nullptr, 0);
     for (uint32_t j = 0; j < n; ++j) {
         if (from[j] == kNone) continue;
         const uint32_t v = slots[j], u = slots[from[j]];

@@ -1,10 +1,10 @@
 // The inner loops of the one-to-all query: rows of a second-layer patch matrix (packed
-// 12-bit entries, vg_graph.h) against arrays of distances, and the unfolded crossings of
-// a patch's border edges. Each kernel has a portable
-// version and, on x86-64, an AVX2 version picked at run time (vg_graph::avx2, set by
-// vg_open from the CPU). Both give the same bits: a value is always base + q * scale with
-// the product rounded before the sum (no fused multiply-add), a minimum is the same in
-// any order, and ties go to the first row or entry either way.
+// 12-bit entries, vg_graph.h) lowering arrays of distances, and the unfolded crossings of
+// a patch's border edges. Each kernel has a portable version and, on x86-64, an AVX2
+// version picked at run time (vg_graph::avx2, set by vg_open from the CPU). Both give the
+// same bits: a value is always base + q * scale with the product rounded before the sum
+// (no fused multiply-add), a minimum is the same in any order, and ties go to the first
+// row either way.
 #pragma once
 
 #include <stdint.h>
@@ -13,58 +13,44 @@
 
 namespace vg {
 
-// The caller's arrays (best, from, src) have this many entries past the n the kernel is
-// given: the vector versions read and write whole vectors there, leaving them as they were.
+// The caller's best, from and entries arrays have this many entries past the n the
+// kernel is given, which the kernels may overwrite: the vector version reads and writes
+// whole vectors.
 constexpr uint32_t kRowSlack = 16;
 
-// Patch p's node x node block for the sources src[a] < +inf (the last at slot `last`;
-// +inf elsewhere): for every node b, best[b] = min(best[b], src[a] + d(a, b)) over the
-// sources a != b, and from[b] = the first such a in slot order where that lowers it.
-// `scratch` holds last + 1 floats.
-void relaxNodeBlock(bool avx2, const vg_graph& g, const Patch& p, uint32_t last, const float* src, float* scratch,
-                    float* best, uint32_t* from);
+// Lowers best[0..n) from `count` rows of patch matrix entries: row r starts at packed
+// index rows[r] and at distance bases[r]; best[j] = min(best[j], bases[r] + entry) over
+// the entries with a path, and from[j] = tags[r] (r when tags is null) for the first row
+// that gives the minimum. When `entries` is not null, row r's entries (entry * scale,
+// +inf for no path) are kept at entries + r * stride as well.
+void lowerFromRows(bool avx2, const vg_graph& g, float scale, const uint64_t* rows, const float* bases,
+                   const uint32_t* tags, uint32_t count, uint32_t n, float* best, uint32_t* from, float* entries,
+                   uint32_t stride);
 
-// The same for one source a at distance du: its column above the diagonal, then its row.
-void relaxNodeSource(bool avx2, const vg_graph& g, const Patch& p, uint32_t a, float du, float* best, uint32_t* from);
+// Floats between kept rows of n entries: whole vectors.
+inline uint32_t entriesStride(uint32_t n) { return (n + 7) & ~7u; }
 
-// Patch p's interior slots from `count` rows (rows[r]: packed index of row r's first
-// interior entry, bases[r] its start distance): best[j] = min(best[j], bases[r] + entry)
-// and from[j] = the first r that lowers it. Row r's entries (entry * scale, +inf for no
-// path) go to entries + r * stride as well, for the crossings (stride >= the interior
-// count, and kRowSlack entries of slack after the last row).
-void lowerInteriorFromRows(bool avx2, const vg_graph& g, const Patch& p, const uint64_t* rows, const float* bases,
-                           uint32_t count, float* best, uint32_t* from, float* entries, uint32_t stride);
-
-// Floats between decoded rows of `interior` entries: whole vectors.
-inline uint32_t interiorStride(uint32_t interior) { return (interior + 7) & ~7u; }
-
-// One row's interior entries the same way, into out (with kRowSlack entries of slack).
-void decodeInteriorRow(bool avx2, const vg_graph& g, const Patch& p, uint64_t row, float* out);
-
-// Crossings of border edges next to the vertices' best nodes, gathered per patch (arrays
-// of kCrossingChunk entries): per crossing, the distances a = d(s, u), b = d(s, w),
-// c = d(t, u), e = d(t, w) (+inf for no path), the edge length l with l * l and 0.5 / l
-// (as crossing() in vg_graph.h computes them), the source point unfolded once per edge,
-// and t's interior slot.
-constexpr uint32_t kCrossingChunk = 256;  // eleven arrays of 1 KB: all in the L1 cache, in different sets
-struct CrossingBatch {
-    float *a, *b, *c, *e, *l, *ll, *half, *sx, *sy, *length;
-    uint32_t* vertex;
-    uint32_t count;
-};
+// n entries from packed index `row` the same way (entry * scale, +inf for no path), into
+// out (with kRowSlack entries of slack).
+void decodeRow(bool avx2, const vg_graph& g, float scale, uint64_t row, uint32_t n, float* out);
 
 // A border edge (u, w) of the patch being filled, from a vertex's best node u to a
-// neighbour node w reached from the same source, unfolded once for the whole patch.
+// neighbour node w reached from the same source, unfolded once for the whole patch: w's
+// distance b from the source, the edge length l with l * l and 0.5 / l (as crossing() in
+// vg_graph.h computes them), and the source point unfolded across it.
 struct CrossingEdge {
-    const float* entries;  // w's decoded row over the interior slots
-    float b, length;       // d(s, w) and |uw|
+    uint32_t row;  // where w's decoded interior row starts in the caller's row buffer
+    float b, length, lengthSquared, halfInverse;
     UnfoldedPoint source;
 };
 
-// length[i] for the whole batch: crossing() of vg_graph.h, the same operations in the same
-// order (so the same bits), written without branches so that it vectorises; +inf where the
-// segment misses the edge or does not unfold.
-void crossBatch(bool avx2, CrossingBatch& batch);
+// For the interior slots j in `members`, whose best node u is at distance a from the
+// source (c: u's decoded interior row), lowers best[j] to the crossing of each of u's
+// edges: crossing() of vg_graph.h with the same operations in the same order (so the
+// same bits), e = rows[edge.row + j]; +inf (no change) where the segment misses the edge,
+// does not unfold or e is +inf.
+void lowerByCrossings(bool avx2, const float* rows, float a, const float* c, const CrossingEdge* edges,
+                      uint32_t edgeCount, const uint32_t* members, uint32_t memberCount, float* best);
 
 // True when this CPU and operating system run AVX2 code (x86-64 only).
 bool cpuHasAvx2();

@@ -95,21 +95,33 @@ inline void unpackQuanta(const uint8_t* packed, uint64_t k0, uint32_t n, uint32_
     if (t < n) out[t] = quantum(packed, k0 + t);
 }
 
-// Second layer (upper triangle): first entry of row i, its entry for column i + 1.
-inline uint64_t rowStart(const Patch& p, uint32_t i) {
-    return p.matrixBegin + uint64_t(i) * (2 * uint64_t(p.slotCount) - i - 1) / 2;
+// Second-layer patch matrix (format 4): the node rows whole, n x S (row a holds every slot
+// of the patch, its own entry "no path"), so that a search relaxes a node by one
+// contiguous run; then the upper triangle of the interior slots, the only pairs left.
+inline uint64_t nodeRowStart(const Patch& p, uint32_t a) { return p.matrixBegin + uint64_t(a) * p.slotCount; }
+
+// Entries of a second-layer matrix with S slots of which n are nodes.
+inline uint64_t secondMatrixEntries(uint64_t S, uint64_t n) { return n * S + (S - n) * (S - n - (S > n ? 1 : 0)) / 2; }
+
+// Packed index of the entry for slots i != j.
+inline uint64_t entryIndex(const Patch& p, uint32_t i, uint32_t j) {
+    if (i < p.nodeCount) return nodeRowStart(p, i) + j;
+    if (j < p.nodeCount) return nodeRowStart(p, j) + i;
+    uint64_t a = i - p.nodeCount, b = j - p.nodeCount;  // interior: the triangle's row min, column max
+    if (a > b) {
+        const uint64_t t = a;
+        a = b;
+        b = t;
+    }
+    const uint64_t interior = p.slotCount - p.nodeCount;
+    return p.matrixBegin + uint64_t(p.nodeCount) * p.slotCount + a * (2 * interior - a - 1) / 2 + (b - a - 1);
 }
 
 // Distance between slots i and j of a second-layer patch (0 on the diagonal, +inf for
 // "no path").
 inline float entry(const Patch& p, const uint8_t* packed, uint32_t i, uint32_t j) {
     if (i == j) return 0.0f;
-    if (i > j) {
-        const uint32_t t = i;
-        i = j;
-        j = t;
-    }
-    const uint32_t q = quantum(packed, rowStart(p, i) + (j - i - 1));
+    const uint32_t q = quantum(packed, entryIndex(p, i, j));
     return q == kNoPathQuantum ? __builtin_inff() : float(q) * p.scale;
 }
 

@@ -42,12 +42,14 @@ inline void relaxSecondRow(const vg_graph& g, uint32_t patch, uint32_t i, float 
         f.improve(v, dv, key, patch, origin, parent);
         onImprove(v, dv);
     };
-    const uint32_t before = i < p.nodeCount ? i : p.nodeCount;  // an endpoint's slot may follow the nodes
-    // Column i above the diagonal: entry (j + 1, i) sits slotCount - j - 2 after entry (j, i).
-    uint64_t k = p.matrixBegin + i - 1;
-    for (uint32_t j = 0; j < before; k += p.slotCount - j - 2, ++j) visit(j, k);
-    const uint64_t row = rowStart(p, i) - (i + 1);
-    for (uint32_t j = i + 1; j < p.nodeCount; ++j) visit(j, row + j);
+    if (i < p.nodeCount) {  // a node: its own row, whole
+        const uint64_t row = nodeRowStart(p, i);
+        for (uint32_t j = 0; j < p.nodeCount; ++j)
+            if (j != i) visit(j, row + j);
+    } else {  // an endpoint's slot after the nodes: its column of the node rows
+        uint64_t k = p.matrixBegin + i;
+        for (uint32_t j = 0; j < p.nodeCount; ++j, k += p.slotCount) visit(j, k);
+    }
 }
 
 // Relaxes row `i` of first-layer patch `patch` (stored whole, so the row is contiguous).

@@ -42,8 +42,8 @@ bool aligned(const T* p) {
 // Entries a packed 12-bit array of `bytes` bytes holds (entry k ends at byte 3(k/2)+1+k%2).
 uint64_t packedCapacity(uint64_t bytes) { return (bytes / 3) * 2 + (bytes % 3 == 2 ? 1 : 0); }
 
-// Second layer: upper-triangle matrices over all slots. First layer (`nodesOnly`): whole
-// node x node matrices (a lone first-layer patch has no nodes).
+// Second layer: node rows over all slots, then the interior triangle (vg_graph.h). First
+// layer (`nodesOnly`): whole node x node matrices (a lone first-layer patch has no nodes).
 bool patchesValid(const Patch* patches, uint64_t patchCount, uint64_t slotCount, uint64_t entryCapacity,
                   uint64_t parentLimit, bool nodesOnly) {
     for (uint64_t i = 0; i < patchCount; ++i) {
@@ -51,7 +51,7 @@ bool patchesValid(const Patch* patches, uint64_t patchCount, uint64_t slotCount,
         if (uint64_t(p.slotBegin) + p.slotCount > slotCount) return false;
         if ((p.slotCount == 0 && !nodesOnly) || p.nodeCount > p.slotCount || p.slotCount > 65536u) return false;
         if (nodesOnly && p.nodeCount != p.slotCount) return false;
-        const uint64_t n = p.slotCount, entries = nodesOnly ? n * n : n * (n - 1) / 2;
+        const uint64_t n = p.slotCount, entries = nodesOnly ? n * n : secondMatrixEntries(n, p.nodeCount);
         if (p.matrixBegin > entryCapacity || entries > entryCapacity - p.matrixBegin) return false;
         if (!finite(p.scale) || p.scale < 0.0f) return false;
         if (parentLimit != 0 && p.parent >= parentLimit) return false;

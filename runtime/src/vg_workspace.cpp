@@ -28,7 +28,7 @@ uint64_t patchEntriesCapacity(const vg_graph& g) {
     uint64_t most = 0;
     for (uint32_t i = 0; i < g.secondCount; ++i) {
         const vg::Patch& p = g.second[i];
-        const uint64_t need = uint64_t(p.nodeCount) * vg::interiorStride(p.slotCount - p.nodeCount);
+        const uint64_t need = uint64_t(p.nodeCount) * vg::entriesStride(p.slotCount - p.nodeCount);
         if (need > most) most = need;
     }
     return most + vg::kRowSlack;
@@ -82,12 +82,6 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.patchMembers = L.take<uint32_t>(kMaxPatchSlots);
     o.slotEntries = L.take<uint32_t>(kMaxPatchSlots);
     o.patchEntries = L.take<float>(patchEntriesCapacity(g));
-    float** crossingArrays[] = {&o.crossings.a,  &o.crossings.b,  &o.crossings.c,    &o.crossings.e,
-                                &o.crossings.l,  &o.crossings.ll, &o.crossings.half, &o.crossings.sx,
-                                &o.crossings.sy, &o.crossings.length};
-    for (float** array : crossingArrays) *array = L.take<float>(vg::kCrossingChunk);
-    o.crossings.vertex = L.take<uint32_t>(vg::kCrossingChunk);
-    o.crossings.count = 0;
     o.nodeSlotInPatch = L.take<uint32_t>(N);
     o.patchQueue.position = L.take<uint32_t>(g.secondCount);
     o.patchQueue.heap = L.take<vg::HeapEntry>(g.secondCount);

@@ -1,0 +1,186 @@
+// The one-to-all query's kernels (runtime/src/vg_field_kernels.h): the AVX2 versions give
+// the same bits as the portable ones and as a plain reference, on random packed rows of
+// every length and parity, up to the end of the packed array; and whole fields are the
+// same bits with either.
+#include <catch2/catch.hpp>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "bake.h"
+#include "generators.h"
+#include "runtime_graph.h"
+#include "vg_field_kernels.h"
+#include "vg_graph.h"
+
+using namespace vorogeo;
+
+namespace {
+
+// 12-bit entries packed two per three bytes, as the baker writes them.
+std::vector<uint8_t> pack(const std::vector<uint16_t>& q) {
+    std::vector<uint8_t> bytes((q.size() * 3 + 1) / 2, 0);
+    for (size_t k = 0; k < q.size(); ++k) {
+        const size_t b = 3 * (k / 2);
+        if (k % 2 == 0) {
+            bytes[b] = uint8_t(q[k]);
+            bytes[b + 1] = uint8_t((bytes[b + 1] & 0xF0) | (q[k] >> 8));
+        } else {
+            bytes[b + 1] = uint8_t((bytes[b + 1] & 0x0F) | ((q[k] & 0xF) << 4));
+            bytes[b + 2] = uint8_t(q[k] >> 4);
+        }
+    }
+    return bytes;
+}
+
+bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+struct Rows {
+    std::vector<uint16_t> quanta;
+    std::vector<uint8_t> bytes;
+    vg_graph graph{};
+};
+
+Rows randomRows(std::mt19937& rng, size_t entries) {
+    Rows r;
+    std::uniform_int_distribution<int> q(0, 4094);
+    for (size_t k = 0; k < entries; ++k) r.quanta.push_back(rng() % 11 == 0 ? 4095 : uint16_t(q(rng)));
+    r.bytes = pack(r.quanta);
+    r.graph.secondDistances = r.bytes.data();
+    r.graph.secondDistancesEnd = r.bytes.data() + r.bytes.size();
+    return r;
+}
+
+}  // namespace
+
+TEST_CASE("field kernels: lowering from rows and decoding match a plain loop, bit for bit, in both versions",
+          "[runtime][kernels]") {
+    const bool avx2 = vg::cpuHasAvx2();
+    if (!avx2) WARN("this CPU has no AVX2: only the portable kernels are checked");
+    std::mt19937 rng(11);
+    Rows r = randomRows(rng, 2001);  // odd: the last entry ends mid-byte
+    const float scale = 0.00123f;
+    for (int trial = 0; trial < 400; ++trial) {
+        const uint32_t count = 1 + rng() % 6, n = rng() % 75;
+        std::vector<uint64_t> rows(count);
+        std::vector<float> bases(count);
+        std::vector<uint32_t> tags(count);
+        for (uint32_t i = 0; i < count; ++i) {
+            // Some rows end exactly at the last entry, so the vector loads stop short of it.
+            rows[i] = trial % 5 == 0 ? r.quanta.size() - n : rng() % (r.quanta.size() - n + 1);
+            bases[i] = float(rng() % 1000) * 0.01f;
+            tags[i] = uint32_t(rng() % 100);
+        }
+        const uint32_t stride = vg::entriesStride(n);
+        std::vector<float> start(n + vg::kRowSlack);
+        for (float& b : start) b = rng() % 4 == 0 ? __builtin_inff() : float(rng() % 2000) * 0.005f;
+        // Reference: the definition.
+        std::vector<float> refBest(start.begin(), start.begin() + n);
+        std::vector<uint32_t> refFrom(n, 7777);
+        for (uint32_t i = 0; i < count; ++i)
+            for (uint32_t j = 0; j < n; ++j) {
+                const uint16_t q = r.quanta[rows[i] + j];
+                const float v = bases[i] + float(int32_t(q)) * scale;
+                if (q != 4095 && v < refBest[j]) {
+                    refBest[j] = v;
+                    refFrom[j] = tags[i];
+                }
+            }
+        for (int version = 0; version < (avx2 ? 2 : 1); ++version) {
+            std::vector<float> best = start;
+            std::vector<uint32_t> from(n + vg::kRowSlack, 7777);
+            std::vector<float> entries(uint64_t(count) * stride + vg::kRowSlack);
+            vg::lowerFromRows(version == 1, r.graph, scale, rows.data(), bases.data(), tags.data(), count, n, best.data(),
+                              from.data(), entries.data(), stride);
+            for (uint32_t j = 0; j < n; ++j) {
+                INFO("trial " << trial << " version " << version << " slot " << j);
+                REQUIRE(sameBits(best[j], refBest[j]));
+                REQUIRE(from[j] == refFrom[j]);
+                for (uint32_t i = 0; i < count; ++i) {
+                    const uint16_t q = r.quanta[rows[i] + j];
+                    REQUIRE(sameBits(entries[i * stride + j], q == 4095 ? __builtin_inff() : float(int32_t(q)) * scale));
+                }
+            }
+            std::vector<float> decoded(n + vg::kRowSlack);
+            vg::decodeRow(version == 1, r.graph, scale, rows[0], n, decoded.data());
+            for (uint32_t j = 0; j < n; ++j) REQUIRE(sameBits(decoded[j], entries[j]));
+        }
+    }
+}
+
+TEST_CASE("field kernels: crossings match crossing() of vg_graph.h, bit for bit, in both versions",
+          "[runtime][kernels]") {
+    const bool avx2 = vg::cpuHasAvx2();
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.1f, 2.0f);
+    for (int trial = 0; trial < 300; ++trial) {
+        const uint32_t interior = 1 + rng() % 40, edgeCount = rng() % 12, memberCount = rng() % (interior + 1);
+        const uint32_t stride = vg::entriesStride(interior);
+        std::vector<float> rows(uint64_t(edgeCount + 1) * stride + vg::kRowSlack);
+        for (float& v : rows) v = rng() % 9 == 0 ? __builtin_inff() : u(rng);
+        const float* c = rows.data() + uint64_t(edgeCount) * stride;  // the best node's own row
+        const float a = u(rng);
+        std::vector<vg::CrossingEdge> edges;
+        for (uint32_t k = 0; k < edgeCount; ++k) {
+            const float b = u(rng), l = 0.05f + u(rng) * 0.5f;
+            vg::UnfoldedPoint s;
+            if (!vg::unfoldPoint(a, b, l, s)) continue;
+            edges.push_back(vg::CrossingEdge{k * stride, b, l, l * l, 0.5f / l, s});
+        }
+        std::vector<uint32_t> members(interior);
+        for (uint32_t j = 0; j < interior; ++j) members[j] = j;
+        std::shuffle(members.begin(), members.end(), rng);
+        members.resize(memberCount);
+        std::vector<float> start(interior);
+        for (float& v : start) v = a + u(rng);
+        std::vector<float> ref = start;
+        for (uint32_t j : members)
+            for (const vg::CrossingEdge& E : edges) {
+                const float e = rows[E.row + j];
+                if (e == __builtin_inff() || c[j] == __builtin_inff()) continue;
+                ref[j] = std::min(ref[j], vg::crossing(a, E.b, c[j], e, E.length));
+            }
+        for (int version = 0; version < (avx2 ? 2 : 1); ++version) {
+            std::vector<float> best = start;
+            vg::lowerByCrossings(version == 1, rows.data(), a, c, edges.data(), uint32_t(edges.size()), members.data(),
+                                 memberCount, best.data());
+            for (uint32_t j = 0; j < interior; ++j) {
+                INFO("trial " << trial << " version " << version << " slot " << j);
+                REQUIRE(sameBits(best[j], ref[j]));
+            }
+        }
+    }
+}
+
+TEST_CASE("field kernels: one-to-all fields are the same bits with the AVX2 and the portable kernels",
+          "[runtime][kernels]") {
+    if (!vg::cpuHasAvx2()) {
+        WARN("this CPU has no AVX2: nothing to compare");
+        return;
+    }
+    BakeOptions o;
+    BakeReport report;
+    const std::vector<uint8_t> blob = bakeMesh(bumpyTorus(60, 30), o, report, nullptr);
+    tools::RuntimeGraph g;
+    std::string error;
+    REQUIRE(g.open(blob, error));
+    vg_graph& graph = const_cast<vg_graph&>(*g.graph());
+    tools::RuntimeWorkspace ws(g);
+    const uint32_t V = vg_vertex_count(&graph);
+    const std::vector<std::vector<uint32_t>> queries = {{0}, {V / 3}, {5, V / 2, V - 1}};
+    for (const auto& sources : queries) {
+        std::vector<float> dist[2];
+        std::vector<uint32_t> nearest[2];
+        for (int version = 0; version < 2; ++version) {
+            graph.avx2 = version == 1;
+            dist[version].resize(V);
+            nearest[version].resize(V);
+            REQUIRE(vg_distance_field_nearest(&graph, ws.get(), sources.data(), sources.size(), dist[version].data(),
+                                              nearest[version].data()) == VG_OK);
+        }
+        REQUIRE(std::memcmp(dist[0].data(), dist[1].data(), V * sizeof(float)) == 0);
+        REQUIRE(nearest[0] == nearest[1]);
+    }
+    graph.avx2 = true;
+}

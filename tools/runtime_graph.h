@@ -48,6 +48,9 @@ public:
     float distance(uint32_t s, uint32_t t) const;  // aborts the program on a status error
     void setSearch(vg_search_mode mode) const;      // the point-to-point search of later queries
     std::vector<float> field(const std::vector<uint32_t>& sources) const;
+    // The same into `out` (resized to the vertex count): a timing loop reuses one buffer, as
+    // an engine would, rather than timing the allocation and first touch of a new one.
+    void field(const std::vector<uint32_t>& sources, std::vector<float>& out) const;
 
 private:
     const vg_graph* graph_;

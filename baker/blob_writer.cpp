@@ -94,6 +94,28 @@ void nodeEdges(const Mesh& mesh, const std::vector<uint32_t>& nodeOf, size_t nod
     }
 }
 
+// The mesh edges between two node slots of second-layer patch m, both ways, grouped by
+// their first slot, with the length the runtime's euclidean() gives (float positions,
+// float arithmetic). nodeSlot is all -1 on entry and on return.
+void appendPatchEdges(const PatchMatrix& m, const std::vector<uint32_t>& nodeOf,
+                      const std::vector<uint32_t>& nodeVertex, const std::vector<uint32_t>& edgeBegin,
+                      const std::vector<uint32_t>& edgeNeighbours, const std::vector<float>& positions,
+                      std::vector<int32_t>& nodeSlot, std::vector<fb::PatchEdge>& out) {
+    for (uint32_t i = 0; i < m.nodeCount; ++i) nodeSlot[m.vertices[i]] = int32_t(i);
+    for (uint32_t i = 0; i < m.nodeCount; ++i) {
+        const uint32_t v = m.vertices[i], n = nodeOf[v];
+        const float* pa = &positions[3 * size_t(v)];
+        for (uint32_t e = edgeBegin[n]; e < edgeBegin[n + 1]; ++e) {
+            const uint32_t w = nodeVertex[edgeNeighbours[e]];
+            if (nodeSlot[w] < 0) continue;
+            const float* pb = &positions[3 * size_t(w)];
+            const float dx = pa[0] - pb[0], dy = pa[1] - pb[1], dz = pa[2] - pb[2];
+            out.emplace_back(uint16_t(i), uint16_t(nodeSlot[w]), std::sqrt(dx * dx + dy * dy + dz * dz));
+        }
+    }
+    for (uint32_t i = 0; i < m.nodeCount; ++i) nodeSlot[m.vertices[i]] = -1;
+}
+
 }  // namespace
 
 std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partition,
@@ -114,6 +136,16 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
             nodeVertex.push_back(v);
         }
     const size_t N = nodeVertex.size();
+    std::vector<uint32_t> edgeBegin, edgeNeighbours;
+    nodeEdges(mesh, nodeOf, N, edgeBegin, edgeNeighbours);
+    std::vector<float> positions(size_t(V) * 3);
+    for (uint32_t v = 0; v < V; ++v) {
+        positions[3 * v] = float(mesh.positions[v].x);
+        positions[3 * v + 1] = float(mesh.positions[v].y);
+        positions[3 * v + 2] = float(mesh.positions[v].z);
+    }
+    std::vector<fb::PatchEdge> secondEdges;
+    std::vector<int32_t> nodeSlot(V, -1);  // node slots of the patch at hand
 
     std::vector<uint32_t> vertexPatch(V, UINT32_MAX);
     std::vector<uint16_t> vertexSlot(V, 0);
@@ -143,7 +175,9 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
             }
         }
         const float scale = quantise(m, false, secondDist, quantisationMaxAbs);
-        secondRecords.emplace_back(begin, uint32_t(m.vertices.size()), m.nodeCount, matrixBegin, scale,
+        const uint32_t edgesBegin = uint32_t(secondEdges.size());
+        appendPatchEdges(m, nodeOf, nodeVertex, edgeBegin, edgeNeighbours, positions, nodeSlot, secondEdges);
+        secondRecords.emplace_back(begin, uint32_t(m.vertices.size()), m.nodeCount, edgesBegin, matrixBegin, scale,
                                    partition.second[p].parent);
     }
 
@@ -158,7 +192,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
         }
         const float scale = quantise(m, true, firstDist, quantisationMaxAbs);
         const uint32_t comp = component[partition.first[p].seedVertex];
-        firstRecords.emplace_back(begin, m.rows, m.rows, matrixBegin, scale, comp);
+        firstRecords.emplace_back(begin, m.rows, m.rows, 0, matrixBegin, scale, comp);
     }
 
     auto flatten = [](const std::vector<std::vector<fb::Membership>>& lists, std::vector<uint32_t>& begin,
@@ -173,15 +207,6 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     std::vector<fb::Membership> secondAll, firstAll;
     flatten(secondOf, secondBegin, secondAll);
     flatten(firstOf, firstBegin, firstAll);
-    std::vector<uint32_t> edgeBegin, edgeNeighbours;
-    nodeEdges(mesh, nodeOf, N, edgeBegin, edgeNeighbours);
-
-    std::vector<float> positions(size_t(V) * 3);
-    for (uint32_t v = 0; v < V; ++v) {
-        positions[3 * v] = float(mesh.positions[v].x);
-        positions[3 * v + 1] = float(mesh.positions[v].y);
-        positions[3 * v + 2] = float(mesh.positions[v].z);
-    }
     std::vector<uint8_t> flags(N, 0);
     for (size_t n = 0; n < N; ++n) flags[n] = secondInactive[nodeVertex[n]] ? 1 : 0;
 
@@ -205,7 +230,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
                             bytesOf(flags) + bytesOf(secondBegin) + bytesOf(secondAll) + bytesOf(firstBegin) +
                             bytesOf(firstAll) + bytesOf(edgeBegin) + bytesOf(edgeNeighbours) +
                             bytesOf(landmarks.vertices) + bytesOf(landmarks.scales) + bytesOf(landmarks.nodeValues) +
-                            bytesOf(secondRecords) + bytesOf(firstRecords) + bytesOf(slots) +
+                            bytesOf(secondRecords) + bytesOf(firstRecords) + bytesOf(slots) + bytesOf(secondEdges) +
                             bytesOf(secondDist.bytes) + bytesOf(firstDist.bytes) + bytesOf(faceVertices) +
                             bytesOf(faceTwin) + bytesOf(partition.faceSecond) + bytesOf(vertexHalfedge) + 4096,
                         V);
@@ -231,6 +256,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     auto spV = b.CreateVectorOfStructs(secondRecords);
     auto fpV = b.CreateVectorOfStructs(firstRecords);
     auto slV = b.CreateVector(slots);
+    auto seV = b.CreateVectorOfStructs(secondEdges);
     auto sdV = b.CreateVector(secondDist.bytes);
     auto fdV = b.CreateVector(firstDist.bytes);
     fb::GraphBuilder g(b);
@@ -257,6 +283,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     g.add_second_patches(spV);
     g.add_first_patches(fpV);
     g.add_slots(slV);
+    g.add_second_edges(seV);
     g.add_second_distances(sdV);
     g.add_first_distances(fdV);
     g.add_seed(params.seed);

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
+#include <set>
 
 #include <tbb/global_control.h>
 
@@ -126,6 +128,44 @@ TEST_CASE("bake: blob passes the container checks and the flatbuffers verifier, 
         secondEntries += n * S + (I > 0 ? I * (I - 1) / 2 : 0);
     }
     CHECK(g->second_distances()->size() == (secondEntries * 3 + 1) / 2);
+
+    // Patch edges: exactly the node edges with both ends among a patch's nodes, both ways,
+    // grouped by their first slot, with the float length of the stored positions.
+    const auto* edges = g->second_edges();
+    REQUIRE(edges != nullptr);
+    uint64_t expectedEdges = 0;
+    for (uint32_t p = 0; p < sp->size(); ++p) {
+        const auto* rec = sp->Get(p);
+        const uint32_t begin = rec->edge_begin(), end = p + 1 < sp->size() ? sp->Get(p + 1)->edge_begin() : edges->size();
+        REQUIRE(begin <= end);
+        CHECK(begin == expectedEdges);
+        std::map<uint32_t, uint32_t> slotOfNode;
+        for (uint32_t i = 0; i < rec->node_count(); ++i) slotOfNode[g->slots()->Get(rec->slot_begin() + i)] = i;
+        std::set<std::pair<uint32_t, uint32_t>> expected, found;
+        for (const auto& [node, slot] : slotOfNode)
+            for (uint32_t e = g->node_edge_begin()->Get(node); e < g->node_edge_begin()->Get(node + 1); ++e) {
+                const auto it = slotOfNode.find(g->node_edge()->Get(e));
+                if (it != slotOfNode.end()) expected.emplace(slot, it->second);
+            }
+        uint32_t lastFrom = 0;
+        for (uint32_t e = begin; e < end; ++e) {
+            const auto* E = edges->Get(e);
+            REQUIRE(E->from() < rec->node_count());
+            REQUIRE(E->to() < rec->node_count());
+            CHECK(E->from() >= lastFrom);
+            lastFrom = E->from();
+            found.emplace(E->from(), E->to());
+            const uint32_t a = g->node_vertex()->Get(g->slots()->Get(rec->slot_begin() + E->from()));
+            const uint32_t b = g->node_vertex()->Get(g->slots()->Get(rec->slot_begin() + E->to()));
+            float d[3];
+            for (int k = 0; k < 3; ++k) d[k] = g->positions()->Get(3 * a + k) - g->positions()->Get(3 * b + k);
+            CHECK(E->length() == std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+        }
+        CHECK(found == expected);
+        CHECK(found.size() == end - begin);
+        expectedEdges += expected.size();
+    }
+    CHECK(edges->size() == expectedEdges);
 }
 
 TEST_CASE("bake: the same blob bytes for 1 and 2 threads", "[bake]") {

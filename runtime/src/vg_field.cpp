@@ -19,7 +19,6 @@ using namespace vg;
 // source stays.
 void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws, uint32_t reached) {
     const Patch& p = g.second[patchIndex];
-    const uint32_t* slots = g.slots + p.slotBegin;
     const uint32_t interior = p.slotCount - p.nodeCount, stride = entriesStride(interior);
     const uint32_t* bestNode = ws.patchBestNode;
     // The interior slots grouped by their best node (a counting sort).
@@ -34,24 +33,27 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws,
     for (uint32_t r = reached; r > 0; --r) memberBegin[r] = memberBegin[r - 1];  // back to the starts
     memberBegin[0] = 0;
 
+    // The patch's edges come grouped by their first slot: a group whose node is some
+    // vertex's best gives that node's crossings.
     CrossingEdge* edges = ws.patchEdges;
     uint32_t decoded = reached;  // rows in patchEntries: the reached nodes', then those decoded here
-    for (uint32_t r = 0; r < reached; ++r) {
-        if (memberBegin[r] == memberBegin[r + 1]) continue;
-        const uint32_t slotU = ws.patchNodeSlot[r], u = slots[slotU];
+    const uint32_t end = patchEdgesEnd(g, patchIndex);
+    for (uint32_t e = p.edgeBegin; e < end;) {
+        const uint32_t slotU = g.secondEdges[e].from;
+        uint32_t groupEnd = e + 1;
+        while (groupEnd < end && g.secondEdges[groupEnd].from == slotU) ++groupEnd;
+        const uint32_t r = ws.slotEntries[slotU];  // its reached index, if it was reached
+        if (r >= reached || memberBegin[r] == memberBegin[r + 1]) {
+            e = groupEnd;
+            continue;
+        }
         const float a = ws.patchNodeDistance[r];
-        const float* pu = g.positions + 3 * uint64_t(g.nodeVertex[u]);
         uint32_t count = 0;
-        for (uint32_t e = g.nodeEdgeBegin[u]; e < g.nodeEdgeBegin[u + 1] && count < kMaxPatchEdges; ++e) {
-            const uint32_t w = g.nodeEdge[e];
-            const uint32_t slot = ws.nodeSlotInPatch[w];
+        for (; e < groupEnd && count < kMaxPatchEdges; ++e) {
+            const uint32_t slot = g.secondEdges[e].to;
             // Both ends must be reached from the same source for one unfolded path.
-            if (slot == kNone || ws.slotLabel[slot] == __builtin_inff() || ws.slotOrigin[slot] != ws.slotOrigin[slotU])
-                continue;
-            const float* pw = g.positions + 3 * uint64_t(g.nodeVertex[w]);
-            const float dx = pu[0] - pw[0], dy = pu[1] - pw[1], dz = pu[2] - pw[2];
-            const float l = __builtin_sqrtf(dx * dx + dy * dy + dz * dz);  // euclidean() of vg_graph.h
-            const float b = ws.slotLabel[slot];
+            if (ws.slotLabel[slot] == __builtin_inff() || ws.slotOrigin[slot] != ws.slotOrigin[slotU]) continue;
+            const float b = ws.slotLabel[slot], l = g.secondEdges[e].length;
             UnfoldedPoint source;
             if (!unfoldPoint(a, b, l, source)) continue;
             if (ws.slotEntries[slot] == kNone) {
@@ -61,6 +63,7 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws,
             }
             edges[count++] = CrossingEdge{ws.slotEntries[slot] * stride, b, l, l * l, 0.5f / l, source};
         }
+        e = groupEnd;
         lowerByCrossings(g.avx2, ws.patchEntries, a, ws.patchEntries + uint64_t(r) * stride, edges, count,
                          members + memberBegin[r], memberBegin[r + 1] - memberBegin[r], ws.patchBest);
     }
@@ -86,7 +89,6 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
         const bool usable = nodeActive(g, n) && f.labelled(n);
         ws.slotLabel[i] = usable ? f.label[n].dist : __builtin_inff();
         ws.slotOrigin[i] = usable ? f.route[n].origin : kNone;
-        ws.nodeSlotInPatch[n] = i;
         ws.slotEntries[i] = kNone;
         // A node labelled through this patch's own row is no better start than the node
         // it came from (patch distances obey the triangle inequality): skip it.
@@ -114,7 +116,6 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
     lowerFromRows(g.avx2, g, p.scale, ws.patchNodeRow, ws.patchNodeDistance, nullptr, reached, interior, best,
                   bestNode, ws.patchEntries, entriesStride(interior));
     unfoldAtBestNodes(g, patchIndex, ws, reached);
-    for (uint32_t i = 0; i < p.nodeCount; ++i) ws.nodeSlotInPatch[slots[i]] = kNone;
     for (uint32_t j = 0; j < interior; ++j) {
         const uint32_t v = slots[p.nodeCount + j];
         if (best[j] < out[v]) {

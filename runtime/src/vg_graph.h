@@ -22,7 +22,8 @@ struct Patch {
     uint32_t slotBegin;
     uint32_t slotCount;
     uint32_t nodeCount;
-    uint32_t padding;
+    uint32_t edgeBegin;  // second layer: first of its PatchEdges
+
     uint64_t matrixBegin;
     float scale;
     uint32_t parent;
@@ -30,6 +31,10 @@ struct Patch {
 struct Membership {
     uint32_t patch;
     uint32_t slot;
+};
+struct PatchEdge {  // a mesh edge between two node slots of one second-layer patch
+    uint16_t from, to;
+    float length;
 };
 
 }  // namespace vg
@@ -59,6 +64,8 @@ struct vg_graph {
     const vg::Patch* second;
     const vg::Patch* first;
     const uint32_t* slots;
+    const vg::PatchEdge* secondEdges;   // per second-layer patch from its edgeBegin to the next one's
+    uint32_t secondEdgeCount;
     const uint8_t* secondDistances;
     const uint8_t* secondDistancesEnd;  // one past its last byte: the row kernels stop before it
     const uint8_t* firstDistances;
@@ -123,6 +130,11 @@ inline float entry(const Patch& p, const uint8_t* packed, uint32_t i, uint32_t j
     if (i == j) return 0.0f;
     const uint32_t q = quantum(packed, entryIndex(p, i, j));
     return q == kNoPathQuantum ? __builtin_inff() : float(q) * p.scale;
+}
+
+// The edges of second-layer patch i: [begin, end) in secondEdges.
+inline uint32_t patchEdgesEnd(const vg_graph& g, uint32_t i) {
+    return i + 1 < g.secondCount ? g.second[i + 1].edgeBegin : g.secondEdgeCount;
 }
 
 inline bool nodeActive(const vg_graph& g, uint32_t node) { return (g.nodeFlags[node] & kNodeMergedAway) == 0; }

@@ -13,6 +13,7 @@ namespace {
 static_assert(sizeof(Patch) == sizeof(vorogeo::fb::PatchRecord), "PatchRecord layout");
 static_assert(alignof(Patch) == alignof(vorogeo::fb::PatchRecord), "PatchRecord alignment");
 static_assert(sizeof(Membership) == sizeof(vorogeo::fb::Membership), "Membership layout");
+static_assert(sizeof(PatchEdge) == sizeof(vorogeo::fb::PatchEdge), "PatchEdge layout");
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
 #error "the runtime reads flatbuffer vectors in place and needs a little-endian target"
 #endif
@@ -173,6 +174,9 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& 
     out.second = rawStructs<Patch>(g->second_patches());
     out.first = rawStructs<Patch>(g->first_patches());
     out.slots = raw(g->slots());
+    out.secondEdges = rawStructs<PatchEdge>(g->second_edges());
+    if (count(g->second_edges()) >= kNone) return VG_ERR_CORRUPT_CONTENT;
+    out.secondEdgeCount = uint32_t(count(g->second_edges()));
     out.secondDistances = raw(g->second_distances());
     out.secondDistancesEnd = out.secondDistances + count(g->second_distances());
     out.firstDistances = raw(g->first_distances());
@@ -182,6 +186,7 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& 
         !aligned(out.nodeFirstBegin) || !aligned(out.nodeFirst) || !aligned(out.nodeEdgeBegin) ||
         !aligned(out.nodeEdge) || !aligned(out.landmarkScale) || !aligned(out.nodeLandmarks) ||
         !aligned(out.second) || !aligned(out.first) || !aligned(out.slots) || !aligned(out.faceVertices) ||
+        !aligned(out.secondEdges) ||
         !aligned(out.faceTwin) || !aligned(out.facePatch) || !aligned(out.vertexHalfedge))
         return VG_ERR_CORRUPT_STRUCTURE;
     for (uint64_t k = 0; k < K; ++k)
@@ -204,6 +209,21 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& 
     if (!membershipsValid(out.nodeSecondBegin, out.nodeSecond, count(g->node_second()), N, out.second, S2, out.slots) ||
         !membershipsValid(out.nodeFirstBegin, out.nodeFirst, count(g->node_first()), N, out.first, S1, out.slots))
         return VG_ERR_CORRUPT_CONTENT;
+
+    // Patch edges: each patch's range in order, both ends node slots of that patch, a
+    // length that unfolds (finite, not negative).
+    for (uint64_t i = 0; i < S1; ++i)
+        if (out.first[i].edgeBegin != 0) return VG_ERR_CORRUPT_CONTENT;
+    for (uint32_t i = 0; i < S2; ++i) {
+        const uint32_t begin = out.second[i].edgeBegin, end = patchEdgesEnd(out, i);
+        if (begin > end || end > out.secondEdgeCount) return VG_ERR_CORRUPT_CONTENT;
+        for (uint32_t e = begin; e < end; ++e) {
+            const PatchEdge& E = out.secondEdges[e];
+            if (E.from >= out.second[i].nodeCount || E.to >= out.second[i].nodeCount || E.from == E.to ||
+                !finite(E.length) || E.length < 0.0f)
+                return VG_ERR_CORRUPT_CONTENT;
+        }
+    }
 
     // Node edges: offsets in order, neighbours in range.
     if (out.nodeEdgeBegin[0] != 0 || out.nodeEdgeBegin[N] != count(g->node_edge())) return VG_ERR_CORRUPT_CONTENT;

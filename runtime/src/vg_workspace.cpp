@@ -82,7 +82,6 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.patchMembers = L.take<uint32_t>(kMaxPatchSlots);
     o.slotEntries = L.take<uint32_t>(kMaxPatchSlots);
     o.patchEntries = L.take<float>(patchEntriesCapacity(g));
-    o.nodeSlotInPatch = L.take<uint32_t>(N);
     o.patchQueue.position = L.take<uint32_t>(g.secondCount);
     o.patchQueue.heap = L.take<vg::HeapEntry>(g.secondCount);
     o.patchQueue.size = 0;
@@ -110,7 +109,6 @@ void clearStamps(vg_workspace& ws) {
     memset(ws.detail, 0, sizeof(uint32_t) * g.firstCount);
     memset(ws.patchStamp, 0, sizeof(uint32_t) * g.secondCount);
     memset(ws.vertexStamp, 0, sizeof(uint32_t) * g.vertexCount);
-    for (uint32_t n = 0; n < g.nodeCount; ++n) ws.nodeSlotInPatch[n] = vg::kNone;
 }
 
 // The A* bounds read a node's position and landmark distances together: one record per

@@ -204,7 +204,6 @@ struct vg_workspace {
     uint32_t* patchMembers;        // ... in these lists
     uint32_t* slotEntries;         // per node slot of one patch: its row in patchEntries, else kNone
     float* patchEntries;           // node rows over a patch's interior slots, decoded (patchEntriesStride apart)
-    uint32_t* nodeSlotInPatch;     // per node: its slot in the patch being filled, else kNone
     vg::PatchQueue patchQueue;     // one-to-all search: patches with news ...
     float* slotSent;               // ... and per node slot: the label last relaxed through that patch
     vg::Endpoint* targetEndpoints; // kTargetChunk resolved targets (vg_point_k_nearest)

@@ -165,7 +165,8 @@ VG_API vg_status vg_distance_within(const vg_graph* graph, vg_workspace* workspa
                              uint32_t target, float max_distance, float* out_distance);
 
 /* Distance from the nearest of `source_count` sources to every vertex (thesis 3.7.2):
- * out_distances has vg_vertex_count() floats. */
+ * out_distances has vg_vertex_count() floats. On x86-64 the inner loops use AVX2 where
+ * the CPU has it (vg_open checks); the result is the same bits either way. */
 VG_API vg_status vg_distance_field(const vg_graph* graph, vg_workspace* workspace,
                             const uint32_t* sources, size_t source_count, float* out_distances);
 
@@ -180,8 +181,8 @@ VG_API vg_status vg_distance_field_nearest(const vg_graph* graph, vg_workspace* 
 /* The same query time-sliced, for hosts that spread it over frames (as Detour's sliced
  * path search): vg_distance_field_begin checks the arguments and starts it; every
  * vg_distance_field_step does at most `max_steps` units of work (one unit: one patch
- * searched, one patch filled, or one source's own patches written; each bounded by the
- * size of a patch) and sets *out_done to 1 once out_distances (and out_nearest, if given)
+ * searched, 256 node distances written, one patch filled, or one source's own patches
+ * written; each bounded by the size of a patch) and sets *out_done to 1 once out_distances (and out_nearest, if given)
  * hold bit for bit what vg_distance_field_nearest gives; further steps do nothing. Until
  * then the caller keeps `sources` and the outputs alive and does not read them, and the
  * workspace belongs to the sliced query: any other query on it abandons the sliced one

@@ -271,6 +271,13 @@ VG_AVX2 bool lowerRunAvx2(const PackedRun& run, float base, float scale, uint32_
 VG_AVX2 void lowerFromRowsAvx2(const vg_graph& g, float scale, const uint64_t* rows, const float* bases,
                                const uint32_t* tags, uint32_t count, uint32_t n, float* best, uint32_t* from,
                                float* entries, uint32_t stride) {
+    // The rows lie apart in the patch matrix, mostly out of the cache: ask for all of them
+    // before the first is used, so that their loads overlap (igea's field: 1.14x).
+    for (uint32_t r = 0; r < count; ++r) {
+        const uint8_t* b = g.secondDistances + ((3 * rows[r]) >> 1);
+        const uint8_t* e = g.secondDistances + ((3 * (rows[r] + n)) >> 1);
+        for (const uint8_t* x = b; x < e + 63; x += 64) __builtin_prefetch(x);
+    }
     for (uint32_t r = 0; r < count; ++r) {
         const PackedRun run{g.secondDistances, g.secondDistancesEnd, rows[r], n};
         const uint32_t tag = tags ? tags[r] : r;

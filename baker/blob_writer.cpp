@@ -41,9 +41,9 @@ struct Packed12 {
 
 // Appends one patch matrix as 12-bit quanta; returns the scale. `full` stores every
 // row completely (first layer: the search reads whole rows, so they must be contiguous);
-// otherwise (second layer, most of the blob) the node rows whole, each over every slot
-// with "no path" for itself, so that a search relaxes a node by one contiguous run, then
-// only the strict upper triangle of the interior slots (layout in runtime/src/vg_graph.h).
+// otherwise (second layer, most of the blob) the node x node block whole, "no path" on its
+// diagonal, so that a search relaxes a node by one contiguous run, then the node x other
+// block, then only the strict upper triangle of the other slots (runtime/src/vg_graph.h).
 float quantise(const PatchMatrix& m, bool full, Packed12& out, double& maxAbs) {
     double largest = 0;
     for (double d : m.upper)
@@ -63,7 +63,9 @@ float quantise(const PatchMatrix& m, bool full, Packed12& out, double& maxAbs) {
             for (uint32_t j = 0; j < m.rows; ++j) push(m.at(i, j));
     } else {
         for (uint32_t i = 0; i < m.nodeCount; ++i)
-            for (uint32_t j = 0; j < m.rows; ++j) push(i == j ? INFINITY : m.at(i, j));
+            for (uint32_t j = 0; j < m.nodeCount; ++j) push(i == j ? INFINITY : m.at(i, j));
+        for (uint32_t i = 0; i < m.nodeCount; ++i)
+            for (uint32_t j = m.nodeCount; j < m.rows; ++j) push(m.at(i, j));
         for (uint32_t i = m.nodeCount; i < m.rows; ++i)
             for (uint32_t j = i + 1; j < m.rows; ++j) push(m.upper[upperIndex(m.rows, i, j)]);
     }

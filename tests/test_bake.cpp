@@ -48,7 +48,7 @@ uint16_t entry12(const flatbuffers::Vector<uint8_t>& bytes, uint64_t k) {
     return k % 2 == 0 ? uint16_t(bytes[b] | ((bytes[b + 1] & 0x0F) << 8)) : uint16_t((bytes[b + 1] >> 4) | (bytes[b + 2] << 4));
 }
 
-// Second-layer matrices (format 4): the node rows whole over all slots, then the upper
+// Second-layer matrices (format 4): node x node whole, node x other, then the upper
 // triangle of the other slots.
 double storedDistance(const fb::PatchRecord& p, const flatbuffers::Vector<uint8_t>& bytes, uint32_t i, uint32_t j) {
     if (i == j) return 0;
@@ -56,7 +56,7 @@ double storedDistance(const fb::PatchRecord& p, const flatbuffers::Vector<uint8_
     const uint64_t S = p.slot_count(), n = p.node_count();
     uint64_t k;
     if (i < n) {
-        k = p.matrix_begin() + i * S + j;
+        k = j < n ? p.matrix_begin() + i * n + j : p.matrix_begin() + n * n + i * (S - n) + (j - n);
     } else {
         const uint64_t I = S - n, a = i - n, b = j - n;
         k = p.matrix_begin() + n * S + a * (2 * I - a - 1) / 2 + (b - a - 1);
@@ -124,7 +124,7 @@ TEST_CASE("bake: blob passes the container checks and the flatbuffers verifier, 
         CHECK(rec->matrix_begin() == secondEntries);
         const uint64_t S = rec->slot_count(), n = rec->node_count(), I = S - n;
         for (uint32_t a = 0; a < n; ++a)  // a node's own entry in its row is "no path"
-            CHECK(entry12(*g->second_distances(), rec->matrix_begin() + a * S + a) == 4095);
+            CHECK(entry12(*g->second_distances(), rec->matrix_begin() + a * n + a) == 4095);
         secondEntries += n * S + (I > 0 ? I * (I - 1) / 2 : 0);
     }
     CHECK(g->second_distances()->size() == (secondEntries * 3 + 1) / 2);

@@ -58,7 +58,7 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws,
             if (!unfoldPoint(a, b, l, source)) continue;
             if (ws.slotEntries[slot] == kNone) {
                 ws.slotEntries[slot] = decoded;
-                decodeRow(g.avx2, g, p.scale, nodeRowStart(p, slot) + p.nodeCount, interior,
+                decodeRow(g.avx2, g, p.scale, interiorRowStart(p, slot), interior,
                           ws.patchEntries + uint64_t(decoded++) * stride);
             }
             edges[count++] = CrossingEdge{ws.slotEntries[slot] * stride, b, l, l * l, 0.5f / l, source};
@@ -96,7 +96,7 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
             ws.patchNodeSlot[reached] = i;
             ws.slotEntries[i] = reached;
             ws.patchNodeDistance[reached] = ws.slotLabel[i];
-            ws.patchNodeRow[reached] = nodeRowStart(p, i) + p.nodeCount;
+            ws.patchNodeRow[reached] = interiorRowStart(p, i);
             ++reached;
         }
     }

@@ -102,26 +102,32 @@ inline void unpackQuanta(const uint8_t* packed, uint64_t k0, uint32_t n, uint32_
     if (t < n) out[t] = quantum(packed, k0 + t);
 }
 
-// Second-layer patch matrix (format 4): the node rows whole, n x S (row a holds every slot
-// of the patch, its own entry "no path"), so that a search relaxes a node by one
-// contiguous run; then the upper triangle of the interior slots, the only pairs left.
-inline uint64_t nodeRowStart(const Patch& p, uint32_t a) { return p.matrixBegin + uint64_t(a) * p.slotCount; }
+// Second-layer patch matrix (format 4), with n nodes among S slots and I = S - n others:
+// the node x node block whole (n x n, row a "no path" at a: a search relaxes a node by one
+// contiguous run, and a patch's node rows lie together), then the node x other block
+// (n x I, row a: node a to every other slot, what the one-to-all fill reads), then the
+// upper triangle of the other slots.
+inline uint64_t nodeRowStart(const Patch& p, uint32_t a) { return p.matrixBegin + uint64_t(a) * p.nodeCount; }
+inline uint64_t interiorRowStart(const Patch& p, uint32_t a) {
+    return p.matrixBegin + uint64_t(p.nodeCount) * p.nodeCount + uint64_t(a) * (p.slotCount - p.nodeCount);
+}
 
 // Entries of a second-layer matrix with S slots of which n are nodes.
 inline uint64_t secondMatrixEntries(uint64_t S, uint64_t n) { return n * S + (S - n) * (S - n - (S > n ? 1 : 0)) / 2; }
 
 // Packed index of the entry for slots i != j.
 inline uint64_t entryIndex(const Patch& p, uint32_t i, uint32_t j) {
-    if (i < p.nodeCount) return nodeRowStart(p, i) + j;
-    if (j < p.nodeCount) return nodeRowStart(p, j) + i;
-    uint64_t a = i - p.nodeCount, b = j - p.nodeCount;  // interior: the triangle's row min, column max
+    const uint32_t n = p.nodeCount;
+    if (i < n) return j < n ? nodeRowStart(p, i) + j : interiorRowStart(p, i) + (j - n);
+    if (j < n) return interiorRowStart(p, j) + (i - n);
+    uint64_t a = i - n, b = j - n;  // two others: the triangle's row min, column max
     if (a > b) {
         const uint64_t t = a;
         a = b;
         b = t;
     }
-    const uint64_t interior = p.slotCount - p.nodeCount;
-    return p.matrixBegin + uint64_t(p.nodeCount) * p.slotCount + a * (2 * interior - a - 1) / 2 + (b - a - 1);
+    const uint64_t interior = p.slotCount - n;
+    return p.matrixBegin + uint64_t(n) * p.slotCount + a * (2 * interior - a - 1) / 2 + (b - a - 1);
 }
 
 // Distance between slots i and j of a second-layer patch (0 on the diagonal, +inf for

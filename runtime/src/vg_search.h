@@ -46,9 +46,10 @@ inline void relaxSecondRow(const vg_graph& g, uint32_t patch, uint32_t i, float 
         const uint64_t row = nodeRowStart(p, i);
         for (uint32_t j = 0; j < p.nodeCount; ++j)
             if (j != i) visit(j, row + j);
-    } else {  // an endpoint's slot after the nodes: its column of the node rows
-        uint64_t k = p.matrixBegin + i;
-        for (uint32_t j = 0; j < p.nodeCount; ++j, k += p.slotCount) visit(j, k);
+    } else {  // an endpoint's slot after the nodes: its column of the node x other block
+        const uint64_t stride = p.slotCount - p.nodeCount;
+        uint64_t k = interiorRowStart(p, 0) + (i - p.nodeCount);
+        for (uint32_t j = 0; j < p.nodeCount; ++j, k += stride) visit(j, k);
     }
 }
 

@@ -23,7 +23,8 @@ uint64_t secondNodeSlotEnd(const vg_graph& g) {
 }
 
 // Floats for one patch's decoded node rows over its interior slots (vg_field.cpp), plus the
-// kernels' slack.
+// kernels' slack. At most n (S - n) rounded up, under 2^31 for S <= 65536 slots, so the
+// crossing kernel's 32-bit offsets into it never overflow.
 uint64_t patchEntriesCapacity(const vg_graph& g) {
     uint64_t most = 0;
     for (uint32_t i = 0; i < g.secondCount; ++i) {
@@ -76,7 +77,6 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.patchBestNode = L.take<uint32_t>(kMaxPatchSlots + vg::kRowSlack);
     o.slotLabel = L.take<float>(kMaxPatchSlots);
     o.slotOrigin = L.take<uint32_t>(kMaxPatchSlots);
-    o.patchEdgeBegin = L.take<uint32_t>(kMaxPatchSlots + 1);
     o.patchEdges = L.take<vg::CrossingEdge>(vg::kMaxPatchEdges);
     o.patchMemberBegin = L.take<uint32_t>(kMaxPatchSlots + 1);
     o.patchMembers = L.take<uint32_t>(kMaxPatchSlots);

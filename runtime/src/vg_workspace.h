@@ -15,7 +15,7 @@ struct Portal;  // vg_path_taut.h
 struct Apex;
 
 constexpr uint32_t kMaxPatchSlots = 65536;  // slots per patch (vertex slots are 16-bit)
-constexpr uint32_t kMaxPatchEdges = 4096;  // border edges unfolded per patch (more are skipped)
+constexpr uint32_t kMaxPatchEdges = 4096;  // crossing edges of one best node (more are skipped)
 constexpr uint32_t kTargetChunk = 2048;    // surface-point targets resolved at once (k-nearest)
 
 struct Potential {
@@ -198,12 +198,11 @@ struct vg_workspace {
     uint32_t* patchBestNode;       // per interior slot of one patch: index of its best node
     float* slotLabel;              // per node slot of one patch: its label (+inf: none, or merged away)
     uint32_t* slotOrigin;          // ... and the source it came from
-    uint32_t* patchEdgeBegin;      // per reached node of one patch: first of its crossing edges
-    vg::CrossingEdge* patchEdges;
+    vg::CrossingEdge* patchEdges;  // one node's crossing edges
     uint32_t* patchMemberBegin;    // per reached node of one patch: first interior slot it is best for ...
     uint32_t* patchMembers;        // ... in these lists
     uint32_t* slotEntries;         // per node slot of one patch: its row in patchEntries, else kNone
-    float* patchEntries;           // node rows over a patch's interior slots, decoded (patchEntriesStride apart)
+    float* patchEntries;           // node rows over a patch's interior slots, decoded (entriesStride apart)
     vg::PatchQueue patchQueue;     // one-to-all search: patches with news ...
     float* slotSent;               // ... and per node slot: the label last relaxed through that patch
     vg::Endpoint* targetEndpoints; // kTargetChunk resolved targets (vg_point_k_nearest)

@@ -274,9 +274,9 @@ VG_AVX2 void lowerFromRowsAvx2(const vg_graph& g, float scale, const uint64_t* r
     // The rows lie apart in the patch matrix, mostly out of the cache: ask for all of them
     // before the first is used, so that their loads overlap (igea's field: 1.14x).
     for (uint32_t r = 0; r < count; ++r) {
-        const uint8_t* b = g.secondDistances + ((3 * rows[r]) >> 1);
-        const uint8_t* e = g.secondDistances + ((3 * (rows[r] + n)) >> 1);
-        for (const uint8_t* x = b; x < e + 63; x += 64) __builtin_prefetch(x);
+        const uintptr_t b = uintptr_t(g.secondDistances + ((3 * rows[r]) >> 1));
+        const uintptr_t e = uintptr_t(g.secondDistances + ((3 * (rows[r] + n)) >> 1));
+        for (uintptr_t x = b; x < e + 63; x += 64) __builtin_prefetch(reinterpret_cast<const void*>(x));
     }
     for (uint32_t r = 0; r < count; ++r) {
         const PackedRun run{g.secondDistances, g.secondDistancesEnd, rows[r], n};

@@ -109,7 +109,7 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
             const float d = ws.patchNodeDistance[r] + entry(p, g.secondDistances, ws.patchNodeSlot[r], j);
             if (d < o) {
                 o = d;
-                if (nearest) nearest[g.nodeVertex[n]] = f.route[slots[ws.patchNodeSlot[r]]].origin;
+                if (nearest) nearest[g.nodeVertex[n]] = ws.slotOrigin[ws.patchNodeSlot[r]];
             }
         }
     }

@@ -76,29 +76,21 @@ void decodePortable(const PackedRun& r, float scale, float* out) {
     }
 }
 
-// unfoldPoint(c, e, l) for the target side, then crossingLength (vg_graph.h), with the
-// failed cases as +inf.
+// crossing() of vg_graph.h with the source side unfolded once per edge: the target side
+// unfolded, then the segment between them; +inf where either fails.
 inline float crossingAt(const CrossingEdge& E, float a, float c, float e) {
-    const float sx = E.source.x, sy = E.source.y;
-    const float tx = (c * c - e * e + E.lengthSquared) * E.halfInverse;
-    const float y2 = c * c - tx * tx;
-    if (!(y2 > 0.0f)) return __builtin_inff();
-    const float ty = __builtin_sqrtf(y2);
-    const float x = sx + (tx - sx) * (sy / (sy + ty));
-    if (!(x > 0.0f && x < E.length)) return __builtin_inff();
-    const float dx = tx - sx, dy = ty + sy;
-    const float d = __builtin_sqrtf(dx * dx + dy * dy);
-    const float viaU = a + c, viaW = E.b + e;
-    const float viaNode = (viaU < viaW ? viaU : viaW) / kUnfoldSlack;
-    return d < viaNode ? viaNode : d;
+    UnfoldedPoint t;
+    if (!unfoldPoint(c, e, E.length, t)) return __builtin_inff();
+    return crossingLength(E.source, t, E.length, a + c, E.b + e);
 }
 
 #if VG_FIELD_KERNELS_AVX2
 
 #define VG_AVX2 __attribute__((target("avx2")))
 
-// crossingAt for eight (edge, member) pairs in the lanes, operation for operation: the
-// edges' values come in lanes already (b, l, ll, half, sx, sy), e and c per lane.
+// crossingAt for eight (edge, member) pairs in the lanes, operation for operation (with
+// unfoldPoint's l * l and 0.5 / l taken from the edge): the edges' values come in lanes
+// already (b, l, ll, half, sx, sy), e and c per lane.
 VG_AVX2 inline __m256 crossingLanes(__m256 a, __m256 b, __m256 l, __m256 ll, __m256 half, __m256 sx, __m256 sy,
                                     __m256 c, __m256 e) {
     const __m256 zero = _mm256_setzero_ps();
@@ -230,11 +222,6 @@ VG_AVX2 inline void unpack16(Unpacker& u, __m256i* q) {
     u.p += 24;
 }
 
-VG_AVX2 inline __m256i laneIndex(uint32_t x) {
-    return _mm256_add_epi32(_mm256_set1_epi32(int32_t(x)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-}
-
-// Lanes x .. x + 7 below n whose entry has a path.
 // Entries x .. x + 7 (quanta q) lower best / from from `base`, and go to entries when that
 // is not null. The arrays are read and written whole vectors at a time, so the lanes past
 // the run write into the caller's slack (vg_field_kernels.h): masks would cost more.

@@ -23,7 +23,6 @@ struct Patch {
     uint32_t slotCount;
     uint32_t nodeCount;
     uint32_t edgeBegin;  // second layer: first of its PatchEdges
-
     uint64_t matrixBegin;
     float scale;
     uint32_t parent;
@@ -87,19 +86,6 @@ inline uint32_t quantum(const uint8_t* packed, uint64_t k) {
     const uint8_t* p = packed + ((3 * k) >> 1);
     const uint32_t word = uint32_t(p[0]) | (uint32_t(p[1]) << 8);
     return (word >> ((uint32_t(k) & 1u) << 2)) & 0xFFFu;
-}
-
-// Entries k0 .. k0 + n of a packed 12-bit array into out[0..n): two quanta per three bytes,
-// without the per-entry parity shift of quantum().
-inline void unpackQuanta(const uint8_t* packed, uint64_t k0, uint32_t n, uint32_t* __restrict out) {
-    uint32_t t = 0;
-    if ((k0 & 1) && n > 0) out[t++] = quantum(packed, k0);
-    const uint8_t* g = packed + 3 * ((k0 + t) >> 1);
-    for (; t + 1 < n; t += 2, g += 3) {
-        out[t] = uint32_t(g[0]) | ((uint32_t(g[1]) & 0xFu) << 8);
-        out[t + 1] = (uint32_t(g[1]) >> 4) | (uint32_t(g[2]) << 4);
-    }
-    if (t < n) out[t] = quantum(packed, k0 + t);
 }
 
 // Second-layer patch matrix (format 4), with n nodes among S slots and I = S - n others:

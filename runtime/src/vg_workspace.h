@@ -191,11 +191,12 @@ struct vg_workspace {
     uint32_t* vertexNextTarget;    // per vertex: next target in the same patch
     uint32_t* vertexTargetIndex;   // per vertex: its first index in the caller's target list
     uint32_t* vertexStamp;
-    float* patchNodeDistance;      // per reached node of one patch (vg_distance_field); 65536 entries
-    uint32_t* patchNodeSlot;
-    uint64_t* patchNodeRow;        // per reached node: packed index of its first interior entry
-    float* patchBest;              // per interior slot of one patch: best distance so far
-    uint32_t* patchBestNode;       // per interior slot of one patch: index of its best node
+    // vg_distance_field, per patch: in the search its sources, in the fill its reached nodes
+    float* patchNodeDistance;      // ... their labels (65536 entries and the kernels' slack),
+    uint32_t* patchNodeSlot;       // ... their slots,
+    uint64_t* patchNodeRow;        // ... the packed index of their row (node or interior part);
+    float* patchBest;              // per node slot (search) or interior slot (fill): best so far
+    uint32_t* patchBestNode;       // ... and the source slot or reached node that gave it
     float* slotLabel;              // per node slot of one patch: its label (+inf: none, or merged away)
     uint32_t* slotOrigin;          // ... and the source it came from
     vg::CrossingEdge* patchEdges;  // one node's crossing edges

@@ -30,8 +30,14 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
                                       const std::vector<uint8_t>& secondInactive, const BlobParams& params,
                                       const Landmarks& landmarks, double& quantisationMaxAbs);
 
-// Header + payload (the flatbuffer, zstd-compressed or not).
+// Header + payload: the flatbuffer as is, or (compress) with its distances prediction-coded
+// (distance_coding.h) and zstd-compressed. `flatbuffer` must be a verified Graph buffer.
 std::vector<uint8_t> packContainer(const std::vector<uint8_t>& flatbuffer, bool compress, int level);
+
+// Header + payload for any bytes, with the given container flags (VG_FLAG_ZSTD compresses
+// them; VG_FLAG_CODED_DISTANCES only says they are coded): what packContainer uses, and
+// how the fuzzers seal mutated flatbuffers.
+std::vector<uint8_t> sealContainer(const std::vector<uint8_t>& flatbuffer, uint32_t flags, int level);
 
 // Throws std::runtime_error ("cannot write PATH: reason") if `path` cannot be created, by
 // creating and removing its temporary file: a bake checks this before its long work.

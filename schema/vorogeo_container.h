@@ -1,9 +1,10 @@
-/* The vorogeo blob container (format version 4), shared by the baker and the runtime.
+/* The vorogeo blob container (format version 5), shared by the baker and the runtime.
  *
  *   offset  size  field
  *        0     8  magic "VOROGEO\0"
  *        8     4  format version (little-endian uint32) = VG_FORMAT_VERSION
- *       12     4  flags: bit 0 = payload is one zstd frame; other bits must be 0
+ *       12     4  flags: bit 0 = payload is one zstd frame; bit 1 = the flatbuffer's distance
+ *                  matrices are prediction-coded (vorogeo_distance_coding.h); other bits 0
  *       16     8  payload size in bytes (what follows the header)
  *       24     8  flatbuffer size in bytes (payload size when not compressed)
  *       32     8  checksum of the payload bytes (vg_checksum64 below)
@@ -20,8 +21,9 @@
 
 #define VG_CONTAINER_MAGIC "VOROGEO"
 #define VG_CONTAINER_HEADER_SIZE 40u
-#define VG_FORMAT_VERSION 4u
+#define VG_FORMAT_VERSION 5u
 #define VG_FLAG_ZSTD 1u
+#define VG_FLAG_CODED_DISTANCES 2u
 
 static inline uint64_t vg_load_le64(const unsigned char* p) {
     uint64_t v = 0;

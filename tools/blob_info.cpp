@@ -31,11 +31,12 @@ int printBlobInfo(const std::string& path, bool json) {
     const size_t fileBytes = size_t(in.tellg());
     const uint32_t V = g->vertex_count();
     if (json) {
-        std::printf("{\"blob\":\"%s\",\"format_version\":%u,\"compressed\":%s,\"bytes\":%zu,\"flatbuffer_bytes\":%zu,"
+        std::printf("{\"blob\":\"%s\",\"format_version\":%u,\"compressed\":%s,\"coded_distances\":%s,\"bytes\":%zu,\"flatbuffer_bytes\":%zu,"
                     "\"bytes_per_vertex\":%.2f,\"vertices\":%u,\"nodes\":%zu,\"nodes_pruned_second\":%zu,"
                     "\"first_patches\":%zu,\"second_patches\":%zu,\"first_layer_node_slots\":%zu,"
                     "\"seed\":%llu,\"n1\":%u,\"n2\":%u,\"delta\":%g,\"margin_rings\":%u,\"bbox_diagonal\":%g}\n",
-                    path.c_str(), blob.formatVersion, blob.compressed ? "true" : "false", fileBytes,
+                    path.c_str(), blob.formatVersion, blob.compressed ? "true" : "false", blob.coded ? "true" : "false",
+                    fileBytes,
                     blob.flatbuffer.size(), V ? double(fileBytes) / V : 0.0, V, size(g->node_vertex()), secondPruned,
                     size(g->first_patches()), size(g->second_patches()), size(g->node_first()),
                     (unsigned long long)g->seed(), g->n1(), g->n2(), double(g->delta()), g->margin_rings(),
@@ -43,7 +44,8 @@ int printBlobInfo(const std::string& path, bool json) {
         return 0;
     }
     std::printf("%s: vorogeo blob, format version %u, %s, %zu bytes (%.1f per vertex; flatbuffer %zu bytes)\n",
-                path.c_str(), blob.formatVersion, blob.compressed ? "zstd" : "uncompressed", fileBytes,
+                path.c_str(), blob.formatVersion,
+                blob.compressed ? (blob.coded ? "zstd, prediction-coded distances" : "zstd") : "uncompressed", fileBytes,
                 V ? double(fileBytes) / V : 0.0, blob.flatbuffer.size());
     std::printf("  vertices        %u\n", V);
     std::printf("  patches         %zu first layer, %zu second layer\n", size(g->first_patches()),

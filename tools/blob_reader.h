@@ -1,5 +1,7 @@
 // Reading a .vgeo blob on the tool side: container checks (magic, format version, flags,
-// sizes, checksum), zstd decompression and the flatbuffers verifier. The engine-side
+// sizes, checksum), zstd decompression, the flatbuffers verifier and the decoding of
+// prediction-coded distances (after checking the ranges it reads), so that `flatbuffer`
+// always holds plain quanta. The engine-side
 // reader is the runtime's; this one serves the tools and the tests.
 #pragma once
 
@@ -14,6 +16,7 @@ namespace vorogeo::tools {
 struct BlobContents {
     uint32_t formatVersion = 0;
     bool compressed = false;
+    bool coded = false;               // the file's distances were prediction-coded
     std::vector<uint8_t> flatbuffer;  // verified
     const fb::Graph* graph() const { return fb::GetGraph(flatbuffer.data()); }
 };

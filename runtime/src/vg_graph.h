@@ -68,6 +68,7 @@ struct vg_graph {
     const uint8_t* secondDistances;
     const uint8_t* secondDistancesEnd;  // one past its last byte: the row kernels stop before it
     const uint8_t* firstDistances;
+    const uint8_t* firstDistancesEnd;   // one past its last byte
     bool avx2;                          // the row kernels may use AVX2 (vg_field_kernels.h)
 
     // Set by vg_open_file only: what vg_close_file releases.

@@ -1,9 +1,11 @@
 // vg_open_size / vg_open: container header, checksum, decompression into caller memory
-// (static zstd context), flatbuffers verification, then the meaning checks of
-// vg_validate.cpp. Nothing is allocated; on failure nothing refers to the memory.
+// (static zstd context), flatbuffers verification, the meaning checks of vg_validate.cpp,
+// then the decoding of prediction-coded distances (vg_decode.h). Nothing is allocated; on
+// failure nothing refers to the memory.
 #include <string.h>
 
 #include "vg_graph.h"
+#include "vg_decode.h"
 #include "vg_field_kernels.h"
 #include "vg_validate.h"
 #include "vorogeo_container.h"
@@ -18,6 +20,7 @@ namespace {
 // Everything vg_open needs to know from the 40-byte header.
 struct Header {
     bool compressed;
+    bool coded;  // distances prediction-coded: decoded in caller memory, never used in place
     uint64_t payloadSize;
     uint64_t flatbufferSize;
     uint64_t checksum;
@@ -36,8 +39,9 @@ vg_status readHeader(const void* blob, size_t blobSize, Header& h) {
     if (memcmp(p, VG_CONTAINER_MAGIC, 8) != 0) return VG_ERR_BAD_MAGIC;
     if (vg_load_le32(p + 8) != VG_FORMAT_VERSION) return VG_ERR_UNSUPPORTED_VERSION;
     const uint32_t flags = vg_load_le32(p + 12);
-    if ((flags & ~VG_FLAG_ZSTD) != 0) return VG_ERR_UNSUPPORTED_FLAGS;
+    if ((flags & ~(VG_FLAG_ZSTD | VG_FLAG_CODED_DISTANCES)) != 0) return VG_ERR_UNSUPPORTED_FLAGS;
     h.compressed = (flags & VG_FLAG_ZSTD) != 0;
+    h.coded = (flags & VG_FLAG_CODED_DISTANCES) != 0;
 #if !VG_WITH_ZSTD
     if (h.compressed) return VG_ERR_UNSUPPORTED_FLAGS;
 #endif
@@ -65,12 +69,17 @@ bool usableInPlace(const void* blob) {
     return ((reinterpret_cast<uintptr_t>(blob) + VG_CONTAINER_HEADER_SIZE) & 7u) == 0;
 }
 
-// Layout of the caller memory: [graph][flatbuffer copy][zstd context], each aligned.
+// Coded distances are decoded where they lie, so such a flatbuffer is always copied.
+bool copied(const void* blob, const Header& h) { return !h.compressed && (h.coded || !usableInPlace(blob)); }
+
+// Layout of the caller memory: [graph][flatbuffer copy][zstd context or decoding scratch],
+// each aligned (the scratch is needed only after decompression, so they share the space).
 size_t memoryNeeded(const void* blob, const Header& h) {
     size_t n = kAlign - 1 + alignUp(sizeof(vg_graph));
-    if (h.compressed) n += alignUp(size_t(h.flatbufferSize)) + alignUp(decompressionContextSize());
-    else if (!usableInPlace(blob)) n += alignUp(size_t(h.flatbufferSize));
-    return n;
+    if (h.compressed || copied(blob, h)) n += alignUp(size_t(h.flatbufferSize));
+    size_t scratch = h.compressed ? decompressionContextSize() : 0;
+    if (h.coded && vg::decodeScratchSize() > scratch) scratch = vg::decodeScratchSize();
+    return n + alignUp(scratch);
 }
 
 }  // namespace
@@ -116,18 +125,21 @@ extern "C" vg_status vg_open(const void* blob, size_t blob_size, void* memory, s
         if (ZSTD_isError(got) || got != h.flatbufferSize) return VG_ERR_DECOMPRESSION;
         flatbuffer = target;
 #endif
-    } else if (!usableInPlace(blob)) {
+    } else if (copied(blob, h)) {
         memcpy(cursor, payload, size_t(h.flatbufferSize));
         flatbuffer = cursor;
+        cursor += alignUp(size_t(h.flatbufferSize));
     }
 
     st = vg::verifyAndBind(flatbuffer, size_t(h.flatbufferSize), *graph);
     if (st != VG_OK) return st;
+    const bool avx2 = vg::cpuHasAvx2();
+    if (h.coded) vg::decodeDistances(*graph, avx2, cursor);
     graph->fileAllocator = vg_allocator{nullptr, nullptr, nullptr};
     graph->fileMemory = nullptr;
     graph->fileMapping = nullptr;
     graph->fileMappingSize = 0;
-    graph->avx2 = vg::cpuHasAvx2();
+    graph->avx2 = avx2;
     *out_graph = graph;
     return VG_OK;
 }

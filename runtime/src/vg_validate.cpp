@@ -180,6 +180,7 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& 
     out.secondDistances = raw(g->second_distances());
     out.secondDistancesEnd = out.secondDistances + count(g->second_distances());
     out.firstDistances = raw(g->first_distances());
+    out.firstDistancesEnd = out.firstDistances + count(g->first_distances());
 
     if (!aligned(out.positions) || !aligned(out.vertexPatch) || !aligned(out.vertexSlot) ||
         !aligned(out.nodeVertex) || !aligned(out.nodeSecondBegin) || !aligned(out.nodeSecond) ||

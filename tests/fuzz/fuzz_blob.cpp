@@ -4,7 +4,10 @@
 //   0: the whole blob as a file holds it (header, checksum, payload);
 //   1: a flatbuffer, sealed here in an uncompressed container with a matching checksum,
 //      so that mutations reach the verifier and the meaning checks instead of the checksum;
-//   2: the same, zstd-compressed.
+//   2: the same, zstd-compressed;
+//   3: the same, zstd-compressed and flagged as prediction-coded (the runtime decodes the
+//      distance arrays of whatever flatbuffer passes validation);
+//   4: the same flagged as coded, uncompressed.
 // Nothing may crash, read out of bounds or trip UBSan; every status must be a known one.
 #include <algorithm>
 #include <cmath>
@@ -16,6 +19,7 @@
 
 #include "blob_writer.h"
 #include "vorogeo.h"
+#include "vorogeo_container.h"
 
 namespace {
 
@@ -142,9 +146,10 @@ void queryEverything(const vg_graph* g, const uint8_t* data, size_t size) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size < 1) return 0;
-    const uint8_t mode = data[0] % 3;
+    const uint8_t mode = data[0] % 5;
     std::vector<uint8_t> rest(data + 1, data + size);
-    std::vector<uint8_t> blob = mode == 0 ? rest : vorogeo::packContainer(rest, mode == 2, 1);
+    const uint32_t flags[5] = {0, 0, VG_FLAG_ZSTD, VG_FLAG_ZSTD | VG_FLAG_CODED_DISTANCES, VG_FLAG_CODED_DISTANCES};
+    std::vector<uint8_t> blob = mode == 0 ? rest : vorogeo::sealContainer(rest, flags[mode], 1);
     if (mode != 0 && rest.empty()) return 0;
 
     // 16-byte aligned copy, as a host's mapping or asset buffer would be.

@@ -1,5 +1,5 @@
 // Writes the fuzzers' seed corpora (committed under tests/fuzz/corpus/): small blobs baked
-// from generated meshes, in the three presentations fuzz_blob.cpp understands, and small
+// from generated meshes, in the five presentations fuzz_blob.cpp understands, and small
 // mesh files of every format, valid and broken, for fuzz_mesh.cpp. Rerun it when the blob
 // format changes:  build/tests/vorogeo_fuzz_corpus tests/fuzz/corpus
 #include <cstdio>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bake.h"
+#include "distance_coding.h"
 #include "generators.h"
 #include "mesh_io.h"
 #include "vorogeo_container.h"
@@ -25,9 +26,9 @@ void writeSeed(const std::filesystem::path& path, uint8_t first, const std::vect
     if (!out) throw std::runtime_error("cannot write " + path.string());
 }
 
-std::vector<uint8_t> bakeSmall(const Mesh& mesh, uint32_t n2) {
+std::vector<uint8_t> bakeSmall(const Mesh& mesh, uint32_t n2, bool compress) {
     BakeOptions o;
-    o.compress = false;
+    o.compress = compress;
     o.n2 = n2;
     o.landmarks = 2;
     BakeReport report;
@@ -35,11 +36,16 @@ std::vector<uint8_t> bakeSmall(const Mesh& mesh, uint32_t n2) {
 }
 
 void blobSeeds(const std::filesystem::path& dir, const std::string& name, const Mesh& mesh, uint32_t n2) {
-    const std::vector<uint8_t> blob = bakeSmall(mesh, n2);
+    const std::vector<uint8_t> blob = bakeSmall(mesh, n2, false);
     const std::vector<uint8_t> flatbuffer(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end());
     writeSeed(dir / (name + "-file"), 0, blob);
+    writeSeed(dir / (name + "-file-zstd"), 0, bakeSmall(mesh, n2, true));
     writeSeed(dir / (name + "-flatbuffer"), 1, flatbuffer);
     writeSeed(dir / (name + "-zstd"), 2, flatbuffer);
+    std::vector<uint8_t> coded = flatbuffer;
+    codeDistances(coded);
+    writeSeed(dir / (name + "-coded-zstd"), 3, coded);
+    writeSeed(dir / (name + "-coded"), 4, coded);
 }
 
 std::vector<uint8_t> meshFile(const Mesh& mesh, MeshFormat format, const std::filesystem::path& scratch) {

@@ -1,0 +1,14 @@
+// Prediction coding of a finished flatbuffer's distance matrices, for compressed blobs
+// (schema/vorogeo_distance_coding.h says what and why; the runtime decodes at vg_open).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace vorogeo {
+
+// Replaces the quanta of second_distances and first_distances in `flatbuffer` (a verified
+// Graph buffer) by their codes; nothing else changes.
+void codeDistances(std::vector<uint8_t>& flatbuffer);
+
+}  // namespace vorogeo

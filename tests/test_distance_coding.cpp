@@ -1,0 +1,267 @@
+// Prediction-coded distances (schema/vorogeo_distance_coding.h, baker/distance_coding.h,
+// runtime/src/vg_decode.h): the runtime's decoder, AVX2 and portable, gives back exactly
+// the quanta the reference encoder was given, on random matrices of every shape and on
+// real bakes; a compressed (coded) blob and an uncompressed one answer with the same bits.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "bake.h"
+#include "blob_reader.h"
+#include "blob_writer.h"
+#include "distance_coding.h"
+#include "generators.h"
+#include "runtime_graph.h"
+#include "vg_decode.h"
+#include "vg_field_kernels.h"
+#include "vg_graph.h"
+#include "vorogeo_container.h"
+#include "vorogeo_distance_coding.h"
+
+using namespace vorogeo;
+
+namespace {
+
+std::vector<uint8_t> bakeWith(const Mesh& mesh, bool compress) {
+    BakeOptions o;
+    o.compress = compress;
+    BakeReport report;
+    return bakeMesh(mesh, o, report, nullptr);
+}
+
+// One random patch layout: S slots, the first n of them nodes, on random positions.
+struct RandomGraph {
+    std::vector<float> positions;
+    std::vector<uint32_t> slots, nodeVertex;
+    std::vector<vg::Patch> second, first;
+    std::vector<uint8_t> secondBytes, firstBytes;
+    vg_graph graph{};
+};
+
+float randomCoordinate(std::mt19937& rng) {
+    switch (rng() % 8) {
+        case 0: return 0.0f;
+        case 1: return float(rng() % 1000) * 1e-30f;                       // tiny
+        case 2: return (rng() & 1 ? 1.0f : -1.0f) * float(rng() % 1000) * 1e30f;  // overflows when squared
+        default: return std::uniform_real_distribution<float>(-5.0f, 5.0f)(rng);
+    }
+}
+
+float randomScale(std::mt19937& rng) {
+    switch (rng() % 6) {
+        case 0: return 0.0f;  // 0 / 0 and x / 0
+        case 1: return 1e-30f;
+        default: return std::uniform_real_distribution<float>(1e-4f, 0.01f)(rng);
+    }
+}
+
+RandomGraph randomGraph(std::mt19937& rng) {
+    RandomGraph r;
+    const uint32_t V = 40 + rng() % 60;
+    for (uint32_t v = 0; v < 3 * V; ++v) r.positions.push_back(randomCoordinate(rng));
+    for (uint32_t v = 0; v < V; v += 2) r.nodeVertex.push_back(v);  // every even vertex is a node
+    const uint32_t N = uint32_t(r.nodeVertex.size());
+    uint64_t secondEntries = 0, firstEntries = 0;
+    for (int p = 0; p < 6; ++p) {  // second layer: shapes from 1 slot to 70, any node count
+        const uint32_t S = 1 + rng() % 70, n = rng() % (S + 1);
+        vg::Patch patch{uint32_t(r.slots.size()), S, n, 0, secondEntries, randomScale(rng), 0};
+        for (uint32_t i = 0; i < S; ++i) r.slots.push_back(i < n ? rng() % N : rng() % V);
+        secondEntries += vg::secondMatrixEntries(S, n);
+        r.second.push_back(patch);
+    }
+    for (int p = 0; p < 3; ++p) {  // first layer: whole node x node matrices
+        const uint32_t S = rng() % 40;
+        vg::Patch patch{uint32_t(r.slots.size()), S, S, 0, firstEntries, randomScale(rng), 0};
+        for (uint32_t i = 0; i < S; ++i) r.slots.push_back(rng() % N);
+        firstEntries += uint64_t(S) * S;
+        r.first.push_back(patch);
+    }
+    // Random bytes: any 12-bit values, and the last patch's entries right at the array's end.
+    r.secondBytes.resize((3 * secondEntries + 1) / 2);
+    r.firstBytes.resize((3 * firstEntries + 1) / 2);
+    for (uint8_t& b : r.secondBytes) b = uint8_t(rng());
+    for (uint8_t& b : r.firstBytes) b = uint8_t(rng());
+    r.graph.vertexCount = V;
+    r.graph.nodeCount = N;
+    r.graph.positions = r.positions.data();
+    r.graph.slots = r.slots.data();
+    r.graph.nodeVertex = r.nodeVertex.data();
+    r.graph.second = r.second.data();
+    r.graph.secondCount = uint32_t(r.second.size());
+    r.graph.first = r.first.data();
+    r.graph.firstCount = uint32_t(r.first.size());
+    r.graph.secondDistances = r.secondBytes.data();
+    r.graph.secondDistancesEnd = r.secondBytes.data() + r.secondBytes.size();
+    r.graph.firstDistances = r.firstBytes.data();
+    r.graph.firstDistancesEnd = r.firstBytes.data() + r.firstBytes.size();
+    return r;
+}
+
+// The reference encoder over a whole graph (what the baker's codeDistances does).
+void encode(const RandomGraph& r, std::vector<uint8_t>& second, std::vector<uint8_t>& first) {
+    second = r.secondBytes;
+    first = r.firstBytes;
+    for (const vg::Patch& p : r.second) {
+        const vg_coding_slots s{r.positions.data(), r.slots.data() + p.slotBegin, r.nodeVertex.data(), p.nodeCount};
+        vg_code_second_matrix(r.secondBytes.data(), second.data(), p.matrixBegin, p.slotCount, p.nodeCount, p.scale, &s, 0);
+    }
+    for (const vg::Patch& p : r.first) {
+        const vg_coding_slots s{r.positions.data(), r.slots.data() + p.slotBegin, r.nodeVertex.data(), p.slotCount};
+        vg_code_first_matrix(r.firstBytes.data(), first.data(), p.matrixBegin, p.slotCount, p.scale, &s, 0);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("distance coding: a row's predictions are vg_predicted_quantum's, in both versions", "[runtime][coding]") {
+    const bool avx2 = vg::cpuHasAvx2();
+    if (!avx2) WARN("this CPU has no AVX2: only the portable version is checked");
+    std::mt19937 rng(7);
+    std::vector<uint8_t> scratch(vg::decodeScratchSize());
+    for (int round = 0; round < 300; ++round) {
+        const uint32_t S = 1 + rng() % 90;
+        std::vector<float> x(S + 16, 0.0f), y(S + 16, 0.0f), z(S + 16, 0.0f);
+        for (uint32_t i = 0; i < S; ++i) x[i] = randomCoordinate(rng), y[i] = randomCoordinate(rng), z[i] = randomCoordinate(rng);
+        const float scale = randomScale(rng);
+        const uint32_t i = rng() % S, j0 = rng() % (S + 1);
+        for (int version = 0; version < (avx2 ? 2 : 1); ++version) {
+            std::vector<uint16_t> out(S + 16, 0xFFFF);
+            vg::predictRow(version == 1, x.data(), y.data(), z.data(), i, j0, S, scale, out.data());
+            for (uint32_t j = j0; j < S; ++j) {
+                const float a[3] = {x[i], y[i], z[i]}, b[3] = {x[j], y[j], z[j]};
+                const uint32_t expected = vg_predicted_quantum(a, b, scale);
+                REQUIRE(expected <= VG_CODING_MAX_QUANTUM);
+                REQUIRE(out[j] == expected);
+            }
+        }
+    }
+}
+
+TEST_CASE("distance coding: decode(encode(q)) = q for any bytes and patch shapes, in both versions",
+          "[runtime][coding]") {
+    const bool avx2 = vg::cpuHasAvx2();
+    std::mt19937 rng(11);
+    std::vector<uint8_t> scratch(vg::decodeScratchSize() + 16);
+    void* aligned = scratch.data() + (16 - reinterpret_cast<uintptr_t>(scratch.data()) % 16) % 16;
+    for (int round = 0; round < 200; ++round) {
+        RandomGraph r = randomGraph(rng);
+        std::vector<uint8_t> second, first;
+        encode(r, second, first);
+        for (int version = 0; version < (avx2 ? 2 : 1); ++version) {
+            std::vector<uint8_t> s2 = second, s1 = first;
+            vg_graph g = r.graph;
+            g.secondDistances = s2.data();
+            g.secondDistancesEnd = s2.data() + s2.size();
+            g.firstDistances = s1.data();
+            g.firstDistancesEnd = s1.data() + s1.size();
+            vg::decodeDistances(g, version == 1, aligned);
+            REQUIRE(s2 == r.secondBytes);
+            REQUIRE(s1 == r.firstBytes);
+        }
+    }
+}
+
+TEST_CASE("distance coding: a compressed blob is coded, smaller, and opens to the same quanta and answers",
+          "[runtime][coding]") {
+    const Mesh mesh = bumpyTorus(60, 30);
+    const std::vector<uint8_t> coded = bakeWith(mesh, true), plain = bakeWith(mesh, false);
+    REQUIRE(vg_load_le32(coded.data() + 12) == (VG_FLAG_ZSTD | VG_FLAG_CODED_DISTANCES));
+    REQUIRE(vg_load_le32(plain.data() + 12) == 0u);
+    CHECK(coded.size() * 3 < plain.size() * 2);  // igea: 2.5x; this small torus: 1.8x
+
+    // The tools' reference decoder gives back the plain flatbuffer byte for byte.
+    tools::BlobContents a, b;
+    std::string error;
+    REQUIRE(tools::unpackBlob(coded, a, error));
+    REQUIRE(tools::unpackBlob(plain, b, error));
+    CHECK(a.coded);
+    CHECK_FALSE(b.coded);
+    REQUIRE(a.flatbuffer == b.flatbuffer);
+
+    // So does the runtime's, in both versions; and a coded blob stored uncompressed opens too
+    // (copied, then decoded).
+    std::vector<uint8_t> codedPlain = plain;
+    {
+        std::vector<uint8_t> flatbuffer(plain.begin() + VG_CONTAINER_HEADER_SIZE, plain.end());
+        codeDistances(flatbuffer);
+        codedPlain = sealContainer(flatbuffer, VG_FLAG_CODED_DISTANCES, 0);
+    }
+    tools::RuntimeGraph reference;
+    REQUIRE(reference.open(plain, error));
+    const vg_graph& want = *reference.graph();
+    const size_t secondBytes = size_t(want.secondDistancesEnd - want.secondDistances);
+    const size_t firstBytes = size_t(want.firstDistancesEnd - want.firstDistances);
+    for (const std::vector<uint8_t>* blob : std::vector<const std::vector<uint8_t>*>{&coded, &codedPlain}) {
+        tools::RuntimeGraph g;
+        REQUIRE(g.open(*blob, error));
+        const vg_graph& got = *g.graph();
+        REQUIRE(size_t(got.secondDistancesEnd - got.secondDistances) == secondBytes);
+        REQUIRE(std::memcmp(got.secondDistances, want.secondDistances, secondBytes) == 0);
+        REQUIRE(std::memcmp(got.firstDistances, want.firstDistances, firstBytes) == 0);
+    }
+    {  // the portable decoder on the real arrays, re-coded by the reference encoder
+        const vg_graph& g = want;
+        const std::vector<uint8_t> plain2(g.secondDistances, g.secondDistances + secondBytes);
+        const std::vector<uint8_t> plain1(g.firstDistances, g.firstDistances + firstBytes);
+        std::vector<uint8_t> s2 = plain2, s1 = plain1;
+        for (uint32_t i = 0; i < g.secondCount; ++i) {
+            const vg::Patch& p = g.second[i];
+            const vg_coding_slots s{g.positions, g.slots + p.slotBegin, g.nodeVertex, p.nodeCount};
+            vg_code_second_matrix(plain2.data(), s2.data(), p.matrixBegin, p.slotCount, p.nodeCount, p.scale, &s, 0);
+        }
+        for (uint32_t i = 0; i < g.firstCount; ++i) {
+            const vg::Patch& p = g.first[i];
+            const vg_coding_slots s{g.positions, g.slots + p.slotBegin, g.nodeVertex, p.slotCount};
+            vg_code_first_matrix(plain1.data(), s1.data(), p.matrixBegin, p.slotCount, p.scale, &s, 0);
+        }
+        vg_graph copy = g;
+        copy.secondDistances = s2.data();
+        copy.secondDistancesEnd = s2.data() + s2.size();
+        copy.firstDistances = s1.data();
+        copy.firstDistancesEnd = s1.data() + s1.size();
+        std::vector<uint8_t> scratch(vg::decodeScratchSize() + 16);
+        vg::decodeDistances(copy, false, scratch.data() + (16 - reinterpret_cast<uintptr_t>(scratch.data()) % 16) % 16);
+        REQUIRE(s2 == plain2);
+        REQUIRE(s1 == plain1);
+    }
+
+    // Same answers, bit for bit: point-to-point and a field.
+    tools::RuntimeGraph opened;
+    REQUIRE(opened.open(coded, error));
+    tools::RuntimeWorkspace wa(reference), wb(opened);
+    const uint32_t V = vg_vertex_count(reference.graph());
+    std::mt19937 rng(3);
+    for (int i = 0; i < 200; ++i) {
+        const uint32_t s = rng() % V, t = rng() % V;
+        float da = 0, db = 0;
+        REQUIRE(vg_distance(reference.graph(), wa.get(), s, t, &da) == VG_OK);
+        REQUIRE(vg_distance(opened.graph(), wb.get(), s, t, &db) == VG_OK);
+        REQUIRE(std::memcmp(&da, &db, sizeof da) == 0);
+    }
+    std::vector<float> fa(V), fb(V);
+    const uint32_t source = V / 2;
+    REQUIRE(vg_distance_field(reference.graph(), wa.get(), &source, 1, fa.data()) == VG_OK);
+    REQUIRE(vg_distance_field(opened.graph(), wb.get(), &source, 1, fb.data()) == VG_OK);
+    REQUIRE(std::memcmp(fa.data(), fb.data(), V * sizeof(float)) == 0);
+}
+
+TEST_CASE("distance coding: a coded blob with a flipped payload bit or an unknown flag is refused",
+          "[runtime][coding]") {
+    const std::vector<uint8_t> coded = bakeWith(planeGrid(12, 12, 1.0, 0.05, 3), true);
+    std::string error;
+    tools::RuntimeGraph g;
+    std::vector<uint8_t> flipped = coded;
+    flipped[VG_CONTAINER_HEADER_SIZE + flipped.size() / 3] ^= 0x10;
+    CHECK_FALSE(g.open(flipped, error));
+    CHECK(error.find("checksum") != std::string::npos);
+    std::vector<uint8_t> unknown = coded;
+    vg_store_le32(unknown.data() + 12, VG_FLAG_ZSTD | VG_FLAG_CODED_DISTANCES | 4u);
+    CHECK_FALSE(g.open(unknown, error));
+    tools::BlobContents c;
+    CHECK_FALSE(tools::unpackBlob(unknown, c, error));
+    CHECK(error.find("unknown flags") != std::string::npos);
+}

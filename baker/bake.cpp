@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "bake_limits.h"
 #include "blob_writer.h"
@@ -131,7 +132,7 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
     if (progress) progress("landmarks", 1.0);
     clock.end("landmarks");
     report.flatbufferBytes = buffer.size();
-    std::vector<uint8_t> blob = packContainer(buffer, options.compress, options.compressionLevel);
+    std::vector<uint8_t> blob = packContainer(std::move(buffer), options.compress, options.compressionLevel);
     report.blobBytes = blob.size();
     if (progress) progress("writing blob", 1.0);
     clock.end(options.compress ? "compress" : "container");

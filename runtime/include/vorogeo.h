@@ -95,12 +95,13 @@ VG_API int vg_supports_compression(void);
 typedef struct vg_graph vg_graph;
 
 /* Bytes of caller memory vg_open needs for this blob: the handle, plus for a compressed
- * blob the decompressed graph and the decompression context. Reads only the 40-byte
- * header; errors as vg_open for a bad header. */
+ * blob the decompressed graph and the decompression context (and, for its coded
+ * distances, the decoder's scratch: docs/FORMAT.md). Reads only the 40-byte header;
+ * errors as vg_open for a bad header. */
 VG_API vg_status vg_open_size(const void* blob, size_t blob_size, size_t* out_memory_size);
 
 /* Checks the blob (header, checksum, decompression, flatbuffers verifier, every index
- * and count) and builds a graph handle inside `memory` (any alignment, at least
+ * and count), decodes coded distances, and builds a graph handle inside `memory` (any alignment, at least
  * vg_open_size bytes). On error *out_graph is NULL and nothing refers to the memory. */
 VG_API vg_status vg_open(const void* blob, size_t blob_size, void* memory, size_t memory_size,
                   const vg_graph** out_graph);

@@ -62,6 +62,17 @@ inline void addRunPortable(uint8_t* packed, uint64_t k, const uint16_t* predicti
 }
 
 #if VG_DECODE_BODY_AVX2
+// Sixteen entries from an even index, whose 24 bytes start at p (reads 28).
+inline __m256i unpack16(const uint8_t* p) {
+    const __m256i spread = _mm256_setr_epi8(0, 1, 1, 2, 3, 4, 4, 5, 6, 7, 7, 8, 9, 10, 10, 11,  //
+                                            0, 1, 1, 2, 3, 4, 4, 5, 6, 7, 7, 8, 9, 10, 10, 11);
+    const __m256i bytes = _mm256_inserti128_si256(
+        _mm256_castsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))),
+        _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 12)), 1);
+    const __m256i v = _mm256_shuffle_epi8(bytes, spread);  // entry 2m: bytes 3m, 3m+1; 2m+1: 3m+1, 3m+2
+    return _mm256_blend_epi16(_mm256_and_si256(v, _mm256_set1_epi16(0x0FFF)), _mm256_srli_epi16(v, 4), 0xAA);
+}
+
 // addRunPortable sixteen entries (24 bytes) at a time: unpacked into 16-bit lanes by one
 // byte shuffle, summed, packed back by another; it reads 4 bytes past the 24 it writes,
 // so the last stretch before `end` goes the portable way.
@@ -71,22 +82,15 @@ inline void addRun(uint8_t* packed, const uint8_t* end, uint64_t k, const uint16
         vg_coding_apply(packed, k, predictions[0], 1);
         t = 1;
     }
-    const __m256i spread = _mm256_setr_epi8(0, 1, 1, 2, 3, 4, 4, 5, 6, 7, 7, 8, 9, 10, 10, 11,  //
-                                            0, 1, 1, 2, 3, 4, 4, 5, 6, 7, 7, 8, 9, 10, 10, 11);
     const __m256i compact = _mm256_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1,  //
                                              0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
     const __m256i together = _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 7, 7);
-    const __m256i low12 = _mm256_set1_epi16(0x0FFF);
     for (; t + 16 <= count; t += 16) {
         uint8_t* p = packed + ((3 * (k + t)) >> 1);
         if (end - p < 28) break;
-        const __m256i bytes = _mm256_inserti128_si256(
-            _mm256_castsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))),
-            _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 12)), 1);
-        const __m256i v = _mm256_shuffle_epi8(bytes, spread);  // entry 2m: bytes 3m, 3m+1; 2m+1: 3m+1, 3m+2
-        const __m256i codes = _mm256_blend_epi16(_mm256_and_si256(v, low12), _mm256_srli_epi16(v, 4), 0xAA);
         const __m256i sum = _mm256_and_si256(
-            _mm256_add_epi16(codes, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(predictions + t))), low12);
+            _mm256_add_epi16(unpack16(p), _mm256_loadu_si256(reinterpret_cast<const __m256i*>(predictions + t))),
+            _mm256_set1_epi16(0x0FFF));
         // a pair (even in the low, odd in the high half of a 32-bit lane) as its 24 bits
         const __m256i pair = _mm256_or_si256(_mm256_and_si256(sum, _mm256_set1_epi32(0xFFF)),
                                              _mm256_and_si256(_mm256_srli_epi32(sum, 4), _mm256_set1_epi32(0xFFF000)));
@@ -114,6 +118,33 @@ inline void loadSlots(const vg_graph& g, const Patch& p, const Scratch& s) {
     for (uint32_t i = p.slotCount; i < p.slotCount + 8; ++i) s.x[i] = s.y[i] = s.z[i] = 0.0f;
 }
 
+// Entries [from, from + count) of a packed array into out.
+inline void gatherRunPortable(const uint8_t* packed, uint64_t from, uint32_t count, uint16_t* out) {
+    for (uint32_t c = 0; c < count; ++c) out[c] = uint16_t(vg_coding_get(packed, from + c));
+}
+
+#if VG_DECODE_BODY_AVX2
+// A whole tile row at once where the bytes allow; from an odd index, the sixteen from the
+// entry before, shifted by one, and the last one alone.
+inline void gatherRun(const uint8_t* packed, const uint8_t* end, uint64_t from, uint32_t count, uint16_t* out) {
+    const uint64_t even = from & ~uint64_t(1);
+    const uint8_t* p = packed + ((3 * even) >> 1);
+    if (count != kTile || end - p < 28) return gatherRunPortable(packed, from, count, out);
+    if (even == from) {
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), unpack16(p));
+        return;
+    }
+    alignas(32) uint16_t shifted[16];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(shifted), unpack16(p));
+    for (uint32_t c = 0; c < 15; ++c) out[c] = shifted[c + 1];
+    out[15] = uint16_t(vg_coding_get(packed, from + 15));
+}
+#else
+inline void gatherRun(const uint8_t* packed, const uint8_t*, uint64_t from, uint32_t count, uint16_t* out) {
+    gatherRunPortable(packed, from, count, out);
+}
+#endif
+
 // A square block (rows x rows from packed index `begin`) row by row: the lower half from
 // its decoded mirrors, the diagonal from its convention, the upper half from predictions.
 inline void decodeBlock(uint8_t* packed, const uint8_t* end, uint64_t begin, uint32_t rows, uint32_t diagonal,
@@ -123,10 +154,8 @@ inline void decodeBlock(uint8_t* packed, const uint8_t* end, uint64_t begin, uin
         const uint32_t i1 = rows - i0 < kTile ? rows : i0 + kTile;
         // Rows above this tile of rows, in its columns: decoded already, read once each.
         const uint32_t above = i0 < kTileRows ? i0 : kTileRows;
-        for (uint32_t j = 0; j < above; ++j) {
-            const uint64_t from = begin + uint64_t(j) * rows + i0;
-            for (uint32_t c = 0; c < i1 - i0; ++c) s.tile[j * kTile + c] = uint16_t(vg_coding_get(packed, from + c));
-        }
+        for (uint32_t j = 0; j < above; ++j)
+            gatherRun(packed, end, begin + uint64_t(j) * rows + i0, i1 - i0, s.tile + j * kTile);
         for (uint32_t i = i0; i < i1; ++i) {
             const uint32_t c = i - i0;
             for (uint32_t j = 0; j < above; ++j) prediction[j] = s.tile[j * kTile + c];

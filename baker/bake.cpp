@@ -54,6 +54,8 @@ void validate(const Mesh& mesh, const BakeOptions& o) {
     if (o.marginRings > 8) throw std::invalid_argument("--margin-rings must be in [0, 8]");
     if (o.compressionLevel < 1 || o.compressionLevel > 22)
         throw std::invalid_argument("compression level must be in [1, 22]");
+    if (o.compact && !o.compress)
+        throw std::invalid_argument("--compact codes the distances for compression: it cannot go with --no-compress");
 }
 
 }  // namespace
@@ -70,6 +72,7 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
     report.vertices = mesh.vertexCount();
     report.faces = mesh.faceCount();
     report.compressed = options.compress;
+    report.compact = options.compact;
     StageClock clock(report);
 
     PartitionOptions po;
@@ -132,7 +135,7 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
     if (progress) progress("landmarks", 1.0);
     clock.end("landmarks");
     report.flatbufferBytes = buffer.size();
-    std::vector<uint8_t> blob = packContainer(std::move(buffer), options.compress, options.compressionLevel);
+    std::vector<uint8_t> blob = packContainer(std::move(buffer), options.compress, options.compact, options.compressionLevel);
     report.blobBytes = blob.size();
     if (progress) progress("writing blob", 1.0);
     clock.end(options.compress ? "compress" : "container");

@@ -30,10 +30,11 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
                                       const std::vector<uint8_t>& secondInactive, const BlobParams& params,
                                       const Landmarks& landmarks, double& quantisationMaxAbs);
 
-// Header + payload: the flatbuffer as is, or (compress) with its distances prediction-coded
-// (distance_coding.h) and zstd-compressed. `flatbuffer` must be a verified Graph buffer
-// (taken by value: a caller done with it moves it in, and coding needs no copy).
-std::vector<uint8_t> packContainer(std::vector<uint8_t> flatbuffer, bool compress, int level);
+// Header + payload: the flatbuffer as is, or zstd-compressed (compress), optionally with
+// its distances prediction-coded first (compact: distance_coding.h). `flatbuffer` must be
+// a verified Graph buffer (taken by value: a caller done with it moves it in, and coding
+// needs no copy).
+std::vector<uint8_t> packContainer(std::vector<uint8_t> flatbuffer, bool compress, bool compact, int level);
 
 // Header + payload for any bytes, with the given container flags (VG_FLAG_ZSTD compresses
 // them; VG_FLAG_CODED_DISTANCES only says they are coded): what packContainer uses, and

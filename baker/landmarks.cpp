@@ -32,7 +32,7 @@ void check(vg_status st, const char* what) {
 
 Landmarks computeLandmarks(const std::vector<uint8_t>& flatbuffer, uint32_t count) {
     Landmarks out;
-    const std::vector<uint8_t> blob = packContainer(flatbuffer, false, 0);
+    const std::vector<uint8_t> blob = packContainer(flatbuffer, false, false, 0);
     Block blobCopy(blob.size());  // aligned, so the runtime reads it in place
     std::copy(blob.begin(), blob.end(), static_cast<uint8_t*>(blobCopy.data()));
     size_t need = 0;

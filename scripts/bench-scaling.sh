@@ -3,7 +3,9 @@
 # scale report): spot, igea, and igea after one and two rounds of Loop subdivision
 # (x4, x16: made with `vorogeo subdivide`, never stored in the repository). Each mesh is
 # baked with defaults and THREADS threads, then `vorogeo bench --runtime-only` times
-# PAIRS random point-to-point queries and 5 one-to-all fields (1 thread).
+# PAIRS random point-to-point queries (the directed search and the thesis's bidirectional
+# one taking turns on every pair, with the ratio of their times) and 5 one-to-all fields
+# (1 thread).
 # usage: scripts/bench-scaling.sh [SHARED_DIR] [THREADS] [PAIRS]
 # KEEP=DIR keeps the meshes, blobs and reports there (they take ~1.2 GB with x16).
 set -euo pipefail
@@ -22,8 +24,8 @@ cp_or_subdivide spot "$shared/meshes/spot.ply" 0
 cp_or_subdivide igea "$shared/meshes/igea.ply" 0
 cp_or_subdivide igea-x4 "$shared/meshes/igea.ply" 1
 cp_or_subdivide igea-x16 "$shared/meshes/igea.ply" 2
-printf "| mesh | vertices | bake s | peak MB | blob MB | bytes/vertex | 2nd-layer nodes | p2p p50 us | p2p p99 us | one-to-all ms |\n"
-printf "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n"
+printf "| mesh | vertices | bake s | peak MB | blob MB | bytes/vertex | 2nd-layer nodes | p2p p50 us (directed / bidirectional) | ratio | p2p p99 us (directed / bidirectional) | ratio | one-to-all ms |\n"
+printf "|---|---:|---:|---:|---:|---:|---:|---|---:|---|---:|---:|\n"
 for name in spot igea igea-x4 igea-x16; do
   [ -f "$out/$name.vgeo" ] || "$tool" bake "$out/$name.ply" -o "$out/$name.vgeo" --threads "$threads" --quiet --report "$out/$name.bake.json"
   "$tool" bench "$out/$name.ply" "$out/$name.vgeo" --runtime-only --pairs "$pairs" --json > "$out/$name.bench.json"
@@ -31,7 +33,9 @@ for name in spot igea igea-x4 igea-x16; do
 import json, sys
 b = json.load(open(sys.argv[1])); q = json.load(open(sys.argv[2]))
 print(f"| {sys.argv[3]} | {b['vertices']} | {b['wall_s']:.1f} | {b['peak_rss_mb']:.0f} | {b['blob_bytes'] / 1e6:.1f} | "
-      f"{b['bytes_per_vertex']:.1f} | {b['second_graph']['nodes']} | {q['sssd_p50_us']:.0f} | {q['sssd_p99_us']:.0f} | "
+      f"{b['bytes_per_vertex']:.1f} | {b['second_graph']['nodes']} | "
+      f"{q['sssd_p50_us']:,.0f} / {q['bidirectional_sssd_p50_us']:,.0f} | {q['bidirectional_sssd_p50_us'] / q['sssd_p50_us']:.2f}x | "
+      f"{q['sssd_p99_us']:,.0f} / {q['bidirectional_sssd_p99_us']:,.0f} | {q['bidirectional_sssd_p99_us'] / q['sssd_p99_us']:.2f}x | "
       f"{q['msad_p50_ms']:.1f} |")
 PY
 done

@@ -26,9 +26,10 @@ void writeSeed(const std::filesystem::path& path, uint8_t first, const std::vect
     if (!out) throw std::runtime_error("cannot write " + path.string());
 }
 
-std::vector<uint8_t> bakeSmall(const Mesh& mesh, uint32_t n2, bool compress) {
+std::vector<uint8_t> bakeSmall(const Mesh& mesh, uint32_t n2, bool compact) {
     BakeOptions o;
-    o.compress = compress;
+    o.compress = compact;
+    o.compact = compact;
     o.n2 = n2;
     o.landmarks = 2;
     BakeReport report;

@@ -3,7 +3,8 @@
 # defaults (2 threads) and measure the runtime against the golden pairs (vorogeo eval)
 # and against the exact engine, edge Dijkstra and the thesis's bidirectional search in one
 # run (vorogeo bench).
-# usage: scripts/bench-all.sh [SHARED_DIR]   (JSON of every run kept in $KEEP if set)
+# usage: scripts/bench-all.sh [SHARED_DIR]   (JSON of every run kept in $KEEP if set; BAKE_OPTS adds
+# bake options, e.g. --compact)
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 shared="${1:-$here/../shared}"
@@ -18,7 +19,7 @@ for name in spot fandisk rocker-arm stanford-bunny armadillo-50k nefertiti-50k i
   f="$shared/meshes/$name.ply"
   [ -f "$f" ] || continue
   start=$(date +%s.%N)
-  "$tool" bake "$f" -o "$out/$name.vgeo" --quiet
+  "$tool" bake "$f" -o "$out/$name.vgeo" ${BAKE_OPTS:-} --quiet
   end=$(date +%s.%N)
   "$tool" eval "$f" "$out/$name.vgeo" --golden "$shared/golden/$name.pairs.csv" --json > "$out/$name.eval.json"
   "$tool" bench "$f" "$out/$name.vgeo" --json > "$out/$name.bench.json"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Bakes every mesh of ../shared/meshes with default parameters and prints one table row
 # per mesh from the bake reports: wall time, peak memory, blob size, graph sizes.
-# usage: scripts/bench-bake.sh [MESH_DIR] [THREADS]
+# usage: scripts/bench-bake.sh [MESH_DIR] [THREADS]   (BAKE_OPTS adds bake options, e.g. --compact)
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 meshes="${1:-$here/../shared/meshes}"
@@ -15,7 +15,7 @@ printf "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n"
 for name in spot fandisk rocker-arm stanford-bunny armadillo-50k nefertiti-50k igea; do
   f="$meshes/$name.ply"
   [ -f "$f" ] || continue
-  "$tool" bake "$f" -o "$out/$name.vgeo" --threads "$threads" --quiet --report "$out/$name.json"
+  "$tool" bake "$f" -o "$out/$name.vgeo" --threads "$threads" ${BAKE_OPTS:-} --quiet --report "$out/$name.json"
   python3 - "$out/$name.json" "$name" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1])); s = r["stages_s"]

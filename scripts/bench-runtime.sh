@@ -3,7 +3,7 @@
 # it against the golden pairs: blob size, open time, point-to-point time and error,
 # one-to-all time, metric checks. Two table rows per mesh (the table in BENCHMARKS.md): the
 # default directed point-to-point search, then the thesis's bidirectional one.
-# usage: scripts/bench-runtime.sh [SHARED_DIR]
+# usage: scripts/bench-runtime.sh [SHARED_DIR]   (BAKE_OPTS adds bake options, e.g. --compact)
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 shared="${1:-$here/../shared}"
@@ -16,7 +16,7 @@ printf "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n"
 for name in spot fandisk rocker-arm stanford-bunny armadillo-50k nefertiti-50k igea; do
   f="$shared/meshes/$name.ply"
   [ -f "$f" ] || continue
-  "$tool" bake "$f" -o "$out/$name.vgeo" --quiet
+  "$tool" bake "$f" -o "$out/$name.vgeo" ${BAKE_OPTS:-} --quiet
   for search in directed bidirectional; do
     "$tool" eval "$f" "$out/$name.vgeo" --golden "$shared/golden/$name.pairs.csv" --search "$search" --json > "$out/$name.json"
   python3 - "$out/$name.json" "$name" <<'PY'

@@ -7,10 +7,11 @@
 # one taking turns on every pair, with the ratio of their times) and 5 one-to-all fields
 # (1 thread).
 # usage: scripts/bench-scaling.sh [SHARED_DIR] [THREADS] [PAIRS]
-# KEEP=DIR keeps the meshes, blobs and reports there (they take ~1.2 GB with x16).
+# KEEP=DIR keeps the meshes, blobs and reports there (they take ~1.2 GB with x16);
+# BAKE_OPTS adds bake options (e.g. BAKE_OPTS=--compact).
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
-shared="${1:-$here/../shared}"
+shared="$(cd "${1:-$here/../shared}" && pwd)"  # absolute: the meshes are linked from $out
 threads="${2:-2}"
 pairs="${3:-2000}"
 tool="$here/build/tools/vorogeo"
@@ -27,7 +28,7 @@ cp_or_subdivide igea-x16 "$shared/meshes/igea.ply" 2
 printf "| mesh | vertices | bake s | peak MB | blob MB | bytes/vertex | 2nd-layer nodes | p2p p50 us (directed / bidirectional) | ratio | p2p p99 us (directed / bidirectional) | ratio | one-to-all ms |\n"
 printf "|---|---:|---:|---:|---:|---:|---:|---|---:|---|---:|---:|\n"
 for name in spot igea igea-x4 igea-x16; do
-  [ -f "$out/$name.vgeo" ] || "$tool" bake "$out/$name.ply" -o "$out/$name.vgeo" --threads "$threads" --quiet --report "$out/$name.bake.json"
+  [ -f "$out/$name.vgeo" ] || "$tool" bake "$out/$name.ply" -o "$out/$name.vgeo" --threads "$threads" ${BAKE_OPTS:-} --quiet --report "$out/$name.bake.json"
   "$tool" bench "$out/$name.ply" "$out/$name.vgeo" --runtime-only --pairs "$pairs" --json > "$out/$name.bench.json"
   python3 - "$out/$name.bake.json" "$out/$name.bench.json" "$name" <<'PY'
 import json, sys

@@ -11,11 +11,12 @@
 # BAKE_OPTS adds bake options (e.g. BAKE_OPTS=--compact).
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
-shared="$(cd "${1:-$here/../shared}" && pwd)"  # absolute: the meshes are linked from $out
+shared="${1:-$here/../shared}"
 threads="${2:-2}"
 pairs="${3:-2000}"
 tool="$here/build/tools/vorogeo"
 [ -f "$shared/meshes/igea.ply" ] || { echo "bench-scaling: $shared/meshes/igea.ply not found (the shared meshes are needed)"; exit 1; }
+shared="$(cd "$shared" && pwd)"  # absolute: the meshes are linked from the output folder
 if [ -n "${KEEP:-}" ]; then out="$KEEP"; mkdir -p "$out"; else out="$(mktemp -d)"; trap 'rm -rf "$out"' EXIT; fi
 cp_or_subdivide() {  # NAME SOURCE ROUNDS
   [ -f "$out/$1.ply" ] && return

@@ -102,17 +102,21 @@ RandomGraph randomGraph(std::mt19937& rng) {
     return r;
 }
 
-// The reference encoder over a whole graph (what the baker's codeDistances does).
-void encode(const RandomGraph& r, std::vector<uint8_t>& second, std::vector<uint8_t>& first) {
-    second = r.secondBytes;
-    first = r.firstBytes;
-    for (const vg::Patch& p : r.second) {
-        const vg_coding_slots s{r.positions.data(), r.slots.data() + p.slotBegin, r.nodeVertex.data(), p.nodeCount};
-        vg_code_second_matrix(r.secondBytes.data(), second.data(), p.matrixBegin, p.slotCount, p.nodeCount, p.scale, &s, 0);
+// The reference encoder over a graph's distance arrays (what the baker's codeDistances
+// does to a flatbuffer): second and first get the codes of plainSecond and plainFirst.
+void encode(const vg_graph& g, const std::vector<uint8_t>& plainSecond, const std::vector<uint8_t>& plainFirst,
+            std::vector<uint8_t>& second, std::vector<uint8_t>& first) {
+    second = plainSecond;
+    first = plainFirst;
+    for (uint32_t i = 0; i < g.secondCount; ++i) {
+        const vg::Patch& p = g.second[i];
+        const vg_coding_slots s{g.positions, g.slots + p.slotBegin, g.nodeVertex, p.nodeCount};
+        vg_code_second_matrix(plainSecond.data(), second.data(), p.matrixBegin, p.slotCount, p.nodeCount, p.scale, &s, 0);
     }
-    for (const vg::Patch& p : r.first) {
-        const vg_coding_slots s{r.positions.data(), r.slots.data() + p.slotBegin, r.nodeVertex.data(), p.slotCount};
-        vg_code_first_matrix(r.firstBytes.data(), first.data(), p.matrixBegin, p.slotCount, p.scale, &s, 0);
+    for (uint32_t i = 0; i < g.firstCount; ++i) {
+        const vg::Patch& p = g.first[i];
+        const vg_coding_slots s{g.positions, g.slots + p.slotBegin, g.nodeVertex, p.slotCount};
+        vg_code_first_matrix(plainFirst.data(), first.data(), p.matrixBegin, p.slotCount, p.scale, &s, 0);
     }
 }
 
@@ -151,7 +155,7 @@ TEST_CASE("distance coding: decode(encode(q)) = q for any bytes and patch shapes
     for (int round = 0; round < 200; ++round) {
         RandomGraph r = randomGraph(rng);
         std::vector<uint8_t> second, first;
-        encode(r, second, first);
+        encode(r.graph, r.secondBytes, r.firstBytes, second, first);
         for (int version = 0; version < (avx2 ? 2 : 1); ++version) {
             std::vector<uint8_t> s2 = second, s1 = first;
             vg_graph g = r.graph;
@@ -210,17 +214,8 @@ TEST_CASE("distance coding: a compact blob is coded, smaller, and opens to the s
         const vg_graph& g = want;
         const std::vector<uint8_t> plain2(g.secondDistances, g.secondDistances + secondBytes);
         const std::vector<uint8_t> plain1(g.firstDistances, g.firstDistances + firstBytes);
-        std::vector<uint8_t> s2 = plain2, s1 = plain1;
-        for (uint32_t i = 0; i < g.secondCount; ++i) {
-            const vg::Patch& p = g.second[i];
-            const vg_coding_slots s{g.positions, g.slots + p.slotBegin, g.nodeVertex, p.nodeCount};
-            vg_code_second_matrix(plain2.data(), s2.data(), p.matrixBegin, p.slotCount, p.nodeCount, p.scale, &s, 0);
-        }
-        for (uint32_t i = 0; i < g.firstCount; ++i) {
-            const vg::Patch& p = g.first[i];
-            const vg_coding_slots s{g.positions, g.slots + p.slotBegin, g.nodeVertex, p.slotCount};
-            vg_code_first_matrix(plain1.data(), s1.data(), p.matrixBegin, p.slotCount, p.scale, &s, 0);
-        }
+        std::vector<uint8_t> s2, s1;
+        encode(g, plain2, plain1, s2, s1);
         vg_graph copy = g;
         copy.secondDistances = s2.data();
         copy.secondDistancesEnd = s2.data() + s2.size();

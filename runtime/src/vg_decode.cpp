@@ -8,7 +8,7 @@
 
 #if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
 #define VG_DECODE_AVX2 1
-#include <immintrin.h>
+#include "vg_packed_avx2.h"
 #else
 #define VG_DECODE_AVX2 0
 #endif

@@ -62,17 +62,6 @@ inline void addRunPortable(uint8_t* packed, uint64_t k, const uint16_t* predicti
 }
 
 #if VG_DECODE_BODY_AVX2
-// Sixteen entries from an even index, whose 24 bytes start at p (reads 28).
-inline __m256i unpack16(const uint8_t* p) {
-    const __m256i spread = _mm256_setr_epi8(0, 1, 1, 2, 3, 4, 4, 5, 6, 7, 7, 8, 9, 10, 10, 11,  //
-                                            0, 1, 1, 2, 3, 4, 4, 5, 6, 7, 7, 8, 9, 10, 10, 11);
-    const __m256i bytes = _mm256_inserti128_si256(
-        _mm256_castsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))),
-        _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 12)), 1);
-    const __m256i v = _mm256_shuffle_epi8(bytes, spread);  // entry 2m: bytes 3m, 3m+1; 2m+1: 3m+1, 3m+2
-    return _mm256_blend_epi16(_mm256_and_si256(v, _mm256_set1_epi16(0x0FFF)), _mm256_srli_epi16(v, 4), 0xAA);
-}
-
 // addRunPortable sixteen entries (24 bytes) at a time: unpacked into 16-bit lanes by one
 // byte shuffle, summed, packed back by another; it reads 4 bytes past the 24 it writes,
 // so the last stretch before `end` goes the portable way.
@@ -85,11 +74,12 @@ inline void addRun(uint8_t* packed, const uint8_t* end, uint64_t k, const uint16
     const __m256i compact = _mm256_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1,  //
                                              0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
     const __m256i together = _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 7, 7);
+    Unpacker u = unpackerAt(packed, k + t);  // an even entry: pairs are whole 3-byte groups
     for (; t + 16 <= count; t += 16) {
-        uint8_t* p = packed + ((3 * (k + t)) >> 1);
+        uint8_t* p = const_cast<uint8_t*>(u.p);
         if (end - p < 28) break;
         const __m256i sum = _mm256_and_si256(
-            _mm256_add_epi16(unpack16(p), _mm256_loadu_si256(reinterpret_cast<const __m256i*>(predictions + t))),
+            _mm256_add_epi16(unpackWords(u), _mm256_loadu_si256(reinterpret_cast<const __m256i*>(predictions + t))),
             _mm256_set1_epi16(0x0FFF));
         // a pair (even in the low, odd in the high half of a 32-bit lane) as its 24 bits
         const __m256i pair = _mm256_or_si256(_mm256_and_si256(sum, _mm256_set1_epi32(0xFFF)),
@@ -108,9 +98,9 @@ inline void addRun(uint8_t* packed, const uint8_t*, uint64_t k, const uint16_t* 
 
 // The slots' positions, and zeros in the padding that whole vectors read past them.
 inline void loadSlots(const vg_graph& g, const Patch& p, const Scratch& s) {
+    const vg_coding_slots slots{g.positions, g.slots + p.slotBegin, g.nodeVertex, p.nodeCount};
     for (uint32_t i = 0; i < p.slotCount; ++i) {
-        const uint32_t id = g.slots[p.slotBegin + i];
-        const float* q = g.positions + 3 * uint64_t(i < p.nodeCount ? g.nodeVertex[id] : id);
+        const float* q = vg_coding_position(&slots, i);
         s.x[i] = q[0];
         s.y[i] = q[1];
         s.z[i] = q[2];
@@ -124,20 +114,11 @@ inline void gatherRunPortable(const uint8_t* packed, uint64_t from, uint32_t cou
 }
 
 #if VG_DECODE_BODY_AVX2
-// A whole tile row at once where the bytes allow; from an odd index, the sixteen from the
-// entry before, shifted by one, and the last one alone.
+// A whole tile row at once where the bytes allow.
 inline void gatherRun(const uint8_t* packed, const uint8_t* end, uint64_t from, uint32_t count, uint16_t* out) {
-    const uint64_t even = from & ~uint64_t(1);
-    const uint8_t* p = packed + ((3 * even) >> 1);
-    if (count != kTile || end - p < 28) return gatherRunPortable(packed, from, count, out);
-    if (even == from) {
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), unpack16(p));
-        return;
-    }
-    alignas(32) uint16_t shifted[16];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(shifted), unpack16(p));
-    for (uint32_t c = 0; c < 15; ++c) out[c] = shifted[c + 1];
-    out[15] = uint16_t(vg_coding_get(packed, from + 15));
+    Unpacker u = unpackerAt(packed, from);
+    if (count != kTile || end - u.p < 28) return gatherRunPortable(packed, from, count, out);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), unpackWords(u));
 }
 #else
 inline void gatherRun(const uint8_t* packed, const uint8_t*, uint64_t from, uint32_t count, uint16_t* out) {

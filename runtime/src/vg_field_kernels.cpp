@@ -8,7 +8,8 @@
 #if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
 #define VG_FIELD_KERNELS_AVX2 1
 #include <cpuid.h>
-#include <immintrin.h>
+
+#include "vg_packed_avx2.h"
 #else
 #define VG_FIELD_KERNELS_AVX2 0
 #endif
@@ -86,7 +87,6 @@ inline float crossingAt(const CrossingEdge& E, float a, float c, float e) {
 
 #if VG_FIELD_KERNELS_AVX2
 
-#define VG_AVX2 __attribute__((target("avx2")))
 
 // crossingAt for eight (edge, member) pairs in the lanes, operation for operation (with
 // unfoldPoint's l * l and 0.5 / l taken from the edge): the edges' values come in lanes
@@ -176,34 +176,7 @@ VG_AVX2 void lowerByCrossingsAvx2(const float* rows, float a, const float* c, co
     }
 }
 
-// Sixteen consecutive entries as two vectors of eight 32-bit quanta. An entry starts at
-// bit 12k: an even one in the low 12 bits of bytes (3k/2, +1), an odd one in the high 12
-// bits of the two bytes it ends in. A byte shuffle puts each entry's two bytes in a
-// 16-bit lane, one multiply lifts the lanes whose entry sits low by 4 bits, and one shift
-// right by 4 leaves every entry. A run starting at an odd entry reads from the byte that
-// holds its high half, with the lane patterns swapped, so blocks always start at the
-// run's first entry (and the caller's arrays are accessed at the same offsets for every
-// row, which lets the CPU forward one row's stores to the next row's loads).
-struct Unpacker {
-    __m256i pick, lift;
-    const uint8_t* p;  // the next block's first byte
-};
-
-VG_AVX2 inline Unpacker unpackerFor(const PackedRun& r) {
-    Unpacker u;
-    if (r.k0 & 1) {  // entry k0 lies in the high 12 bits of the bytes after 3 (k0 - 1) / 2
-        u.pick = _mm256_setr_epi8(0, 1, 2, 3, 3, 4, 5, 6, 6, 7, 8, 9, 9, 10, 11, 12,  //
-                                  0, 1, 2, 3, 3, 4, 5, 6, 6, 7, 8, 9, 9, 10, 11, 12);
-        u.lift = _mm256_setr_epi16(1, 16, 1, 16, 1, 16, 1, 16, 1, 16, 1, 16, 1, 16, 1, 16);
-        u.p = r.packed + 3 * (r.k0 >> 1) + 1;
-    } else {
-        u.pick = _mm256_setr_epi8(0, 1, 1, 2, 3, 4, 4, 5, 6, 7, 7, 8, 9, 10, 10, 11,  //
-                                  0, 1, 1, 2, 3, 4, 4, 5, 6, 7, 7, 8, 9, 10, 10, 11);
-        u.lift = _mm256_setr_epi16(16, 1, 16, 1, 16, 1, 16, 1, 16, 1, 16, 1, 16, 1, 16, 1);
-        u.p = r.packed + 3 * (r.k0 >> 1);
-    }
-    return u;
-}
+VG_AVX2 inline Unpacker unpackerFor(const PackedRun& r) { return unpackerAt(r.packed, r.k0); }
 
 // True when every block of the run stays before the end of the packed array (a block
 // reads 28 bytes: two 16-byte loads, 12 apart).
@@ -212,14 +185,11 @@ VG_AVX2 inline bool runFits(const Unpacker& u, const PackedRun& r) {
     return blocks == 0 || u.p + 24 * uint64_t(blocks - 1) + 28 <= r.end;
 }
 
+// Sixteen entries as two vectors of eight 32-bit quanta.
 VG_AVX2 inline void unpack16(Unpacker& u, __m256i* q) {
-    const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i*>(u.p));
-    const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(u.p + 12));
-    const __m256i bytes = _mm256_inserti128_si256(_mm256_castsi128_si256(a), b, 1);
-    const __m256i words = _mm256_srli_epi16(_mm256_mullo_epi16(_mm256_shuffle_epi8(bytes, u.pick), u.lift), 4);
+    const __m256i words = unpackWords(u);
     q[0] = _mm256_cvtepu16_epi32(_mm256_castsi256_si128(words));
     q[1] = _mm256_cvtepu16_epi32(_mm256_extracti128_si256(words, 1));
-    u.p += 24;
 }
 
 // Entries x .. x + 7 (quanta q) lower best / from from `base`, and go to entries when that

@@ -134,6 +134,19 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
                               report.quantisationMaxAbs);
     if (progress) progress("landmarks", 1.0);
     clock.end("landmarks");
+    if (options.hubLabels) {
+        if (progress) progress("hub labels", 0.0);
+        const HubLabels hubs = computeHubLabels(buffer, [&](double f) {
+            if (progress) progress("hub labels", f);
+        });
+        report.hubs = hubs.labelBegin.empty() ? 0 : hubs.labelBegin.size() - 1;
+        report.hubTreeNodes = hubs.tree.size();
+        report.hubLabelEntries = hubs.labels.size();
+        report.hubInnerEntries = hubs.inner.size();
+        buffer = buildGraphBuffer(mesh, partition, geodesics.first, geodesics.second, secondInactive, params,
+                                  landmarks, report.quantisationMaxAbs, hubs);
+        clock.end("hub labels");
+    }
     report.flatbufferBytes = buffer.size();
     std::vector<uint8_t> blob = packContainer(std::move(buffer), options.compress, options.compact, options.compressionLevel);
     report.blobBytes = blob.size();

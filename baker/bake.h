@@ -23,6 +23,7 @@ struct BakeOptions {
     bool compact = false;         // with compress: prediction-coded distances, ~2x smaller, ~1.6x the open time
     int compressionLevel = 9;
     uint32_t landmarks = 12;      // A* landmarks stored in the blob (0: straight-line bound only)
+    bool hubLabels = false;       // hub labels for microsecond point-to-point queries (hub_labels.h)
     uint64_t maxMemoryBytes = 0;  // refuse up front / stop when a bake needs more (0: no limit)
 };
 
@@ -48,6 +49,7 @@ struct BakeReport {
     size_t flatbufferBytes = 0, blobBytes = 0;
     bool compressed = true;
     bool compact = false;           // distances prediction-coded (format 5, flag bit 1)
+    uint64_t hubs = 0, hubTreeNodes = 0, hubLabelEntries = 0, hubInnerEntries = 0;  // bake --hub-labels
 };
 
 using BakeProgress = std::function<void(const char* stage, double fraction)>;

@@ -125,7 +125,8 @@ void appendPatchEdges(const PatchMatrix& m, const std::vector<uint32_t>& nodeOf,
 std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partition,
                                       const std::vector<PatchMatrix>& first, const std::vector<PatchMatrix>& second,
                                       const std::vector<uint8_t>& secondInactive, const BlobParams& params,
-                                      const Landmarks& landmarks, double& quantisationMaxAbs) {
+                                      const Landmarks& landmarks, double& quantisationMaxAbs,
+                                      const HubLabels& hubs) {
     const uint32_t V = mesh.vertexCount();
     quantisationMaxAbs = 0;
 
@@ -236,7 +237,10 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
                             bytesOf(landmarks.vertices) + bytesOf(landmarks.scales) + bytesOf(landmarks.nodeValues) +
                             bytesOf(secondRecords) + bytesOf(firstRecords) + bytesOf(slots) + bytesOf(secondEdges) +
                             bytesOf(secondDist.bytes) + bytesOf(firstDist.bytes) + bytesOf(faceVertices) +
-                            bytesOf(faceTwin) + bytesOf(partition.faceSecond) + bytesOf(vertexHalfedge) + 4096,
+                            bytesOf(faceTwin) + bytesOf(partition.faceSecond) + bytesOf(vertexHalfedge) +
+                            bytesOf(hubs.tree) + bytesOf(hubs.firstLeaf) + bytesOf(hubs.nodeHub) +
+                            bytesOf(hubs.labelBegin) + bytesOf(hubs.labels) + bytesOf(hubs.innerBegin) +
+                            bytesOf(hubs.innerNode) + bytesOf(hubs.innerScale) + bytesOf(hubs.innerMatrixBegin) + bytesOf(hubs.inner) + 4096,
                         V);
     flatbuffers::FlatBufferBuilder b(size_t(64) << 20);
     auto posV = b.CreateVector(positions);
@@ -263,6 +267,26 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     auto seV = b.CreateVectorOfStructs(secondEdges);
     auto sdV = b.CreateVector(secondDist.bytes);
     auto fdV = b.CreateVector(firstDist.bytes);
+    const bool withHubs = !hubs.tree.empty();
+    std::vector<fb::HubTreeNode> hubTree;
+    for (const HubTreeNode& t : hubs.tree) hubTree.emplace_back(t.parent, t.hubBegin, t.hubCount, t.pathBegin);
+    flatbuffers::Offset<flatbuffers::Vector<const fb::HubTreeNode*>> htV;
+    flatbuffers::Offset<flatbuffers::Vector<uint32_t>> hlfV, nhV, hibV, hinV;
+    flatbuffers::Offset<flatbuffers::Vector<uint64_t>> hlbV, himV;
+    flatbuffers::Offset<flatbuffers::Vector<uint16_t>> hlV, hiV;
+    flatbuffers::Offset<flatbuffers::Vector<float>> hisV;
+    if (withHubs) {
+        htV = b.CreateVectorOfStructs(hubTree);
+        hlfV = b.CreateVector(hubs.firstLeaf);
+        nhV = b.CreateVector(hubs.nodeHub);
+        hlbV = b.CreateVector(hubs.labelBegin);
+        hlV = b.CreateVector(hubs.labels);
+        hibV = b.CreateVector(hubs.innerBegin);
+        hinV = b.CreateVector(hubs.innerNode);
+        hisV = b.CreateVector(hubs.innerScale);
+        himV = b.CreateVector(hubs.innerMatrixBegin);
+        hiV = b.CreateVector(hubs.inner);
+    }
     fb::GraphBuilder g(b);
     g.add_vertex_count(V);
     g.add_bbox_diagonal(float(params.bboxDiagonal));
@@ -295,6 +319,19 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     g.add_n2(params.n2);
     g.add_delta(float(params.delta));
     g.add_margin_rings(params.marginRings);
+    if (withHubs) {
+        g.add_hub_tree(htV);
+        g.add_hub_first_leaf(hlfV);
+        g.add_node_hub(nhV);
+        g.add_hub_label_scale(hubs.labelScale);
+        g.add_hub_label_begin(hlbV);
+        g.add_hub_labels(hlV);
+        g.add_hub_inner_begin(hibV);
+        g.add_hub_inner_node(hinV);
+        g.add_hub_inner_scale(hisV);
+        g.add_hub_inner_matrix_begin(himV);
+        g.add_hub_inner(hiV);
+    }
     fb::FinishGraphBuffer(b, g.Finish());
     return std::vector<uint8_t>(b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize());
 }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "hub_labels.h"
 #include "landmarks.h"
 #include "mesh.h"
 #include "partition.h"
@@ -24,11 +25,12 @@ struct BlobParams {
 // The flatbuffer. `first` holds the first-layer matrices over active nodes only;
 // `secondInactive` flags (per vertex) the nodes merged away in the second layer.
 // `quantisationMaxAbs` receives the largest absolute error of the 12-bit distances.
-// `landmarks` may be empty (the landmarks are computed from a first buffer without them).
+// `landmarks` and `hubs` may be empty (both are computed from a first buffer without them).
 std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partition,
                                       const std::vector<PatchMatrix>& first, const std::vector<PatchMatrix>& second,
                                       const std::vector<uint8_t>& secondInactive, const BlobParams& params,
-                                      const Landmarks& landmarks, double& quantisationMaxAbs);
+                                      const Landmarks& landmarks, double& quantisationMaxAbs,
+                                      const HubLabels& hubs = HubLabels());
 
 // Header + payload: the flatbuffer as is, or zstd-compressed (compress), optionally with
 // its distances prediction-coded first (compact: distance_coding.h). `flatbuffer` must be

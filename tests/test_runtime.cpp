@@ -401,7 +401,7 @@ TEST_CASE("runtime: arguments are checked and named by status codes", "[runtime]
     CHECK(vg_distance(graph, ws.get(), 0, 1, nullptr) == VG_ERR_INVALID_ARGUMENT);
     CHECK(vg_distance_within(graph, ws.get(), 0, 1, NAN, &d) == VG_ERR_INVALID_ARGUMENT);
     CHECK(vg_workspace_set_search(nullptr, VG_SEARCH_DIRECTED) == VG_ERR_INVALID_ARGUMENT);
-    CHECK(vg_workspace_set_search(ws.get(), vg_search_mode(2)) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(vg_workspace_set_search(ws.get(), vg_search_mode(3)) == VG_ERR_INVALID_ARGUMENT);
     CHECK(vg_workspace_set_search(ws.get(), vg_search_mode(-1)) == VG_ERR_INVALID_ARGUMENT);
     CHECK(vg_workspace_set_search(ws.get(), VG_SEARCH_BIDIRECTIONAL) == VG_OK);
     CHECK(vg_workspace_set_search(ws.get(), VG_SEARCH_DIRECTED) == VG_OK);

@@ -26,7 +26,7 @@ namespace {
 const char* kUsage =
     "usage: vorogeo bake MESH -o OUT.vgeo [--n1 N] [--n2 N] [--delta F] [--seed S] [--threads N]\n"
     "                    [--no-compress | --compact] [--report FILE.json] [--margin-rings R] [--exact-first-layer]\n"
-    "                    [--landmarks K]\n"
+    "                    [--landmarks K] [--hub-labels]\n"
     "                    [--max-memory SIZE] [--repair] [--quiet]\n"
     "  Precomputes the two-layer patch graph of MESH and writes it as a blob for the runtime.\n"
     "  --n1       first-layer patches (default: one per ~3,000 vertices)\n"
@@ -41,6 +41,8 @@ const char* kUsage =
     "  --report   write a JSON report (times, sizes, graph, peak memory)\n"
     "  --margin-rings  rings of faces around each patch for its geodesics (default 1)\n"
     "  --landmarks     landmarks for the query's A* lower bounds, 0-64 (default 12)\n"
+    "  --hub-labels    store hub labels: point-to-point queries in microseconds instead of\n"
+    "             a graph search (a larger blob, a longer bake)\n"
     "  --exact-first-layer  first-layer distances by exact runs, as the thesis (much slower)\n"
     "  --max-memory  refuse the bake up front if it would need more, stop it if it does\n"
     "             (e.g. 8G, 512M; default: the machine's physical memory)\n"
@@ -206,6 +208,11 @@ void printSummary(const BakeReport& r, const std::string& outPath, int threads, 
                 (unsigned long long)r.secondPrune.edges, (unsigned long long)r.secondPrune.prunedEdges);
     std::printf("  pruning delta %.3g x diagonal (%.3g; second layer %.3g); 12-bit distances: max error %.2e (%.2e x diagonal)\n",
                 r.delta, r.deltaAbsolute, r.deltaSecond, r.quantisationMaxAbs, r.quantisationMaxAbs / r.bboxDiagonal);
+    if (r.hubs > 0)
+        std::printf("  hub labels: %llu hubs, %llu tree nodes, %llu label entries (%.0f per hub), %llu inner entries\n",
+                    (unsigned long long)r.hubs, (unsigned long long)r.hubTreeNodes,
+                    (unsigned long long)r.hubLabelEntries, double(r.hubLabelEntries) / double(r.hubs),
+                    (unsigned long long)r.hubInnerEntries);
     std::printf("  blob %zu bytes (%.1f bytes per vertex, %s; flatbuffer %zu bytes)\n", r.blobBytes,
                 double(r.blobBytes) / std::max(1u, r.vertices),
                 r.compressed ? (r.compact ? "zstd, coded distances" : "zstd") : "uncompressed",
@@ -217,7 +224,7 @@ void printSummary(const BakeReport& r, const std::string& outPath, int threads, 
 int runBake(int argc, char** argv) {
     const cli::Args args(argc, argv, {"-o", "--out", "--n1", "--n2", "--delta", "--seed", "--threads", "--report", "--margin-rings",
                           "--landmarks", "--max-memory"},
-                         {"--no-compress", "--compact", "--exact-first-layer", "--repair", "--quiet", "--help"});
+                         {"--no-compress", "--compact", "--exact-first-layer", "--hub-labels", "--repair", "--quiet", "--help"});
     if (args.flag("--help")) {
         std::printf("%s", kUsage);
         return 0;
@@ -245,6 +252,7 @@ int runBake(int argc, char** argv) {
     o.exactFirstLayer = args.flag("--exact-first-layer");
     o.compress = !args.flag("--no-compress");
     o.compact = args.flag("--compact");
+    o.hubLabels = args.flag("--hub-labels");
     o.maxMemoryBytes = args.has("--max-memory") ? parseSize(args.str("--max-memory")) : physicalMemoryBytes();
     const long long threadsArg = args.integer("--threads", 0);
     if (threadsArg < 0 || threadsArg > 1024) throw cli::UsageError("--threads must be in [1, 1024]");

@@ -63,10 +63,11 @@ int runEval(int argc, char** argv) {
     if (pairCount < 1) throw cli::UsageError("--pairs must be >= 1");
     if (triples < 0) throw cli::UsageError("--triples must be >= 0");
     const uint64_t seed = uint64_t(args.integer("--seed", 1));
-    const std::string searchName = args.str("--search", "directed");
-    vg_search_mode search = VG_SEARCH_DIRECTED;
+    const std::string searchName = args.str("--search", "labels");
+    vg_search_mode search = VG_SEARCH_HUB_LABELS;
     if (searchName == "bidirectional") search = VG_SEARCH_BIDIRECTIONAL;
-    else if (searchName != "directed") throw cli::UsageError("--search must be directed or bidirectional");
+    else if (searchName == "directed") search = VG_SEARCH_DIRECTED;
+    else if (searchName != "labels") throw cli::UsageError("--search must be labels, directed or bidirectional");
 
     Mesh mesh;
     if (!loadMeshForCommand("eval", args.positional()[0], args.flag("--repair"), mesh)) return 1;

@@ -138,17 +138,25 @@ VG_API vg_status vg_workspace_init(const vg_graph* graph, void* memory, size_t m
                             vg_workspace** out_workspace);
 
 /* How a workspace's point-to-point queries (vg_distance, vg_distance_within,
- * vg_point_distance, vg_point_distance_within) search the graph (vg_path always searches
+ * vg_point_distance, vg_point_distance_within) find their answer (vg_path always searches
  * bidirectionally: the route it traces from the meeting point pulls tauter):
- * VG_SEARCH_DIRECTED (set by vg_workspace_init): A* from the source with the whole
- *   lower bound to the target as its potential; the faster one. A short pair (one
- *   first-layer patch, or closer than a tenth of the bounding-box diagonal) is also
- *   searched bidirectionally and gets the shorter of the two answers.
+ * VG_SEARCH_HUB_LABELS (set by vg_workspace_init): two vertices in different first-layer
+ *   patches are answered from the blob's hub labels (bake --hub-labels) in microseconds,
+ *   without a search; everything else (no labels in the blob, surface points, pairs in
+ *   one first-layer patch) as VG_SEARCH_DIRECTED.
+ * VG_SEARCH_DIRECTED: A* from the source with the whole lower bound to the target as its
+ *   potential. A short pair (one first-layer patch, or closer than a tenth of the
+ *   bounding-box diagonal) is also searched bidirectionally and gets the shorter answer.
  * VG_SEARCH_BIDIRECTIONAL: the thesis's bidirectional A* (3.7.1), for comparison.
- * Both search the same graph; their answers differ only in which unfolded border
- * crossings they meet (BENCHMARKS.md has both on every mesh). The mode stays until changed;
- * like every workspace call, not concurrently with a query on the same workspace. */
-typedef enum vg_search_mode { VG_SEARCH_DIRECTED = 0, VG_SEARCH_BIDIRECTIONAL = 1 } vg_search_mode;
+ * All three answer on the same graph; they differ only in which unfolded border crossings
+ * they meet and in how distances are rounded (BENCHMARKS.md has them side by side). The
+ * mode stays until changed; like every workspace call, not concurrently with a query on
+ * the same workspace. */
+typedef enum vg_search_mode {
+    VG_SEARCH_DIRECTED = 0,
+    VG_SEARCH_BIDIRECTIONAL = 1,
+    VG_SEARCH_HUB_LABELS = 2
+} vg_search_mode;
 VG_API vg_status vg_workspace_set_search(vg_workspace* workspace, vg_search_mode mode);
 
 /* ------------------------------------------------------------------ queries */

@@ -21,6 +21,7 @@
 // Quantisation can make a stored length a hair shorter than a bound; a node whose label
 // drops after it was settled is simply queued again.
 #include "vg_fan.h"
+#include "vg_hub_labels.h"
 #include "vg_point_to_point.h"
 #include "vg_query.h"
 #include "vg_lower_bound.h"
@@ -205,6 +206,12 @@ float search(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float 
 
 float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float maxDistance, vg_search_mode mode,
                    Meeting* how) {
+    if (mode == VG_SEARCH_HUB_LABELS) {
+        float labelled = 0.0f;
+        if (how == nullptr && s.isVertex() && t.isVertex() && hubDistance(g, ws, s.vertex, t.vertex, maxDistance, &labelled))
+            return labelled;
+        mode = VG_SEARCH_DIRECTED;
+    }
     if (mode != VG_SEARCH_DIRECTED || how != nullptr) return search(g, ws, s, t, maxDistance, mode, how, nullptr);
     // A short pair is searched both ways and keeps the shorter answer: each search unfolds
     // the border crossings where it meets (the directed one next to t, the bidirectional

@@ -31,6 +31,9 @@ struct Membership {
     uint32_t patch;
     uint32_t slot;
 };
+struct HubTreeNode {  // vorogeo.fb.HubTreeNode (bake --hub-labels)
+    uint32_t parent, hubBegin, hubCount, pathBegin;
+};
 struct PatchEdge {  // a mesh edge between two node slots of one second-layer patch
     uint16_t from, to;
     float length;
@@ -70,6 +73,20 @@ struct vg_graph {
     const uint8_t* firstDistances;
     const uint8_t* firstDistancesEnd;   // one past its last byte
     bool avx2;                          // the row kernels may use AVX2 (vg_field_kernels.h)
+    // Hub labels (bake --hub-labels; vg_hub_labels.cpp); hubTreeCount == 0 when absent.
+    uint32_t hubTreeCount, hubCount;
+    uint32_t hubMaxPath;                // longest tree path, in hubs
+    const vg::HubTreeNode* hubTree;
+    const uint32_t* hubFirstLeaf;       // per first-layer patch
+    const uint32_t* nodeHub;            // per node: hub number or kNone
+    float hubLabelScale;
+    const uint64_t* hubLabelBegin;      // H + 1
+    const uint16_t* hubLabels;
+    const uint32_t* hubInnerBegin;      // first-layer patches + 1, into hubInnerNode
+    const uint32_t* hubInnerNode;
+    const float* hubInnerScale;
+    const uint64_t* hubInnerMatrixBegin;  // first-layer patches + 1, into hubInner
+    const uint16_t* hubInner;
 
     // Set by vg_open_file only: what vg_close_file releases.
     vg_allocator fileAllocator;

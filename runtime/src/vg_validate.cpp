@@ -14,6 +14,7 @@ static_assert(sizeof(Patch) == sizeof(vorogeo::fb::PatchRecord), "PatchRecord la
 static_assert(alignof(Patch) == alignof(vorogeo::fb::PatchRecord), "PatchRecord alignment");
 static_assert(sizeof(Membership) == sizeof(vorogeo::fb::Membership), "Membership layout");
 static_assert(sizeof(PatchEdge) == sizeof(vorogeo::fb::PatchEdge), "PatchEdge layout");
+static_assert(sizeof(HubTreeNode) == sizeof(vorogeo::fb::HubTreeNode), "HubTreeNode layout");
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
 #error "the runtime reads flatbuffer vectors in place and needs a little-endian target"
 #endif
@@ -124,6 +125,86 @@ bool facesValid(const vg_graph& g) {
         }
         if (h >= H || g.faceVertices[h] != v) return false;
     }
+    return true;
+}
+
+// Hub labels (optional, all or none): a tree in preorder whose hub ranges tile [0, H) and
+// whose path positions add up; each hub's label exactly as long as its tree path; inner
+// rows whose nodes are increasing node ids and whose matrices are as large as their
+// patches say. The query reads within these bounds whatever the numbers are.
+bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
+    out.hubTreeCount = 0;
+    out.hubCount = 0;
+    out.hubMaxPath = 0;
+    const uint64_t T = count(g->hub_tree());
+    const bool any = T != 0 || g->hub_first_leaf() || g->node_hub() || g->hub_label_begin() || g->hub_labels() ||
+                     g->hub_inner_begin() || g->hub_inner_node() || g->hub_inner_scale() ||
+                     g->hub_inner_matrix_begin() || g->hub_inner();
+    if (!any) return true;
+    const uint64_t N = out.nodeCount, S1 = out.firstCount;
+    const uint64_t H = count(g->hub_label_begin()) == 0 ? 0 : count(g->hub_label_begin()) - 1;
+    if (T == 0 || T >= kNone || H >= kNone || count(g->hub_label_begin()) == 0 || count(g->hub_first_leaf()) != S1 ||
+        count(g->node_hub()) != N || count(g->hub_inner_begin()) != S1 + 1 || count(g->hub_inner_scale()) != S1 ||
+        count(g->hub_inner_matrix_begin()) != S1 + 1)
+        return false;
+    const float labelScale = g->hub_label_scale();
+    if (!finite(labelScale) || labelScale < 0.0f) return false;
+    const HubTreeNode* tree = rawStructs<HubTreeNode>(g->hub_tree());
+    const uint64_t* labelBegin = raw(g->hub_label_begin());
+    const uint64_t* matrixBegin = raw(g->hub_inner_matrix_begin());
+    if (!aligned(tree) || !aligned(labelBegin) || !aligned(matrixBegin) || !aligned(raw(g->hub_labels())) ||
+        !aligned(raw(g->hub_inner())) || !aligned(raw(g->node_hub())) || !aligned(raw(g->hub_first_leaf())) ||
+        !aligned(raw(g->hub_inner_begin())) || !aligned(raw(g->hub_inner_node())) ||
+        !aligned(raw(g->hub_inner_scale())))
+        return false;
+    uint64_t nextHub = 0, maxPath = 0;
+    for (uint64_t t = 0; t < T; ++t) {
+        const HubTreeNode& n = tree[t];
+        if (t == 0 ? n.parent != kNone : n.parent >= t) return false;
+        const uint64_t parentEnd = t == 0 ? 0 : uint64_t(tree[n.parent].pathBegin) + tree[n.parent].hubCount;
+        if (n.pathBegin != parentEnd || n.hubBegin != nextHub) return false;
+        nextHub += n.hubCount;
+        const uint64_t path = uint64_t(n.pathBegin) + n.hubCount;
+        if (nextHub > H || path > 65536u) return false;
+        if (path > maxPath) maxPath = path;
+        for (uint64_t h = n.hubBegin; h < nextHub; ++h)  // each label: the whole tree path
+            if (labelBegin[h] > labelBegin[h + 1] || labelBegin[h + 1] - labelBegin[h] != path) return false;
+    }
+    if (nextHub != H || labelBegin[0] != 0 || labelBegin[H] != count(g->hub_labels())) return false;
+    const uint32_t* leaf = raw(g->hub_first_leaf());
+    for (uint64_t p = 0; p < S1; ++p)
+        if (leaf[p] >= T || out.first[p].slotCount > 65536u) return false;
+    const uint32_t* nodeHub = raw(g->node_hub());
+    for (uint64_t n = 0; n < N; ++n)
+        if (nodeHub[n] != kNone && nodeHub[n] >= H) return false;
+    const uint32_t* innerBegin = raw(g->hub_inner_begin());
+    const uint32_t* innerNode = raw(g->hub_inner_node());
+    const float* innerScale = raw(g->hub_inner_scale());
+    if (innerBegin[0] != 0 || innerBegin[S1] != count(g->hub_inner_node()) || matrixBegin[0] != 0 ||
+        matrixBegin[S1] != count(g->hub_inner()))
+        return false;
+    for (uint64_t p = 0; p < S1; ++p) {
+        if (innerBegin[p] > innerBegin[p + 1] || innerBegin[p + 1] > count(g->hub_inner_node())) return false;
+        for (uint32_t i = innerBegin[p]; i < innerBegin[p + 1]; ++i)
+            if (innerNode[i] >= N || (i > innerBegin[p] && innerNode[i] <= innerNode[i - 1])) return false;
+        const uint64_t entries = uint64_t(innerBegin[p + 1] - innerBegin[p]) * out.first[p].slotCount;
+        if (matrixBegin[p] > matrixBegin[p + 1] || matrixBegin[p + 1] - matrixBegin[p] != entries) return false;
+        if (!finite(innerScale[p]) || innerScale[p] < 0.0f) return false;
+    }
+    out.hubTreeCount = uint32_t(T);
+    out.hubCount = uint32_t(H);
+    out.hubMaxPath = uint32_t(maxPath);
+    out.hubTree = tree;
+    out.hubFirstLeaf = leaf;
+    out.nodeHub = nodeHub;
+    out.hubLabelScale = labelScale;
+    out.hubLabelBegin = labelBegin;
+    out.hubLabels = raw(g->hub_labels());
+    out.hubInnerBegin = innerBegin;
+    out.hubInnerNode = innerNode;
+    out.hubInnerScale = innerScale;
+    out.hubInnerMatrixBegin = matrixBegin;
+    out.hubInner = raw(g->hub_inner());
     return true;
 }
 
@@ -263,6 +344,7 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& 
         if (out.vertexPatch[out.nodeVertex[n]] == kNone) return VG_ERR_CORRUPT_CONTENT;
 
     if (!facesValid(out)) return VG_ERR_CORRUPT_CONTENT;
+    if (!hubsValid(g, out)) return VG_ERR_CORRUPT_CONTENT;
 
     graph = out;
     return VG_OK;

@@ -94,6 +94,7 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.pathTaut = L.take<vg_path_point>(vg::maxRawPathPoints(g.faceCount));
     o.pathPortals = L.take<vg::Portal>(vg::maxPortals(g.faceCount));
     o.pathApexes = L.take<vg::Apex>(vg::maxPortals(g.faceCount) + 2);
+    o.hubSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? g.hubMaxPath : 0) + 16);
     o.graph = &g;
     o.generation = 0;
     o.slice = vg::FieldSlice{0, 0, 0, nullptr, nullptr, 0, nullptr, nullptr};
@@ -163,14 +164,15 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
     assign(*graph, L, ws);
     clearStamps(*ws);
     fillNodeRecords(*graph, ws->nodeRecords);
-    ws->searchMode = VG_SEARCH_DIRECTED;
+    ws->searchMode = VG_SEARCH_HUB_LABELS;
     *out_workspace = ws;
     return VG_OK;
 }
 
 extern "C" vg_status vg_workspace_set_search(vg_workspace* workspace, vg_search_mode mode) {
     if (workspace == nullptr) return VG_ERR_INVALID_ARGUMENT;
-    if (mode != VG_SEARCH_DIRECTED && mode != VG_SEARCH_BIDIRECTIONAL) return VG_ERR_INVALID_ARGUMENT;
+    if (mode != VG_SEARCH_DIRECTED && mode != VG_SEARCH_BIDIRECTIONAL && mode != VG_SEARCH_HUB_LABELS)
+        return VG_ERR_INVALID_ARGUMENT;
     workspace->searchMode = mode;
     return VG_OK;
 }

@@ -26,8 +26,10 @@ void writeSeed(const std::filesystem::path& path, uint8_t first, const std::vect
     if (!out) throw std::runtime_error("cannot write " + path.string());
 }
 
-std::vector<uint8_t> bakeSmall(const Mesh& mesh, uint32_t n2, bool compact) {
+std::vector<uint8_t> bakeSmall(const Mesh& mesh, uint32_t n2, bool compact, uint32_t hubPatches = 0) {
     BakeOptions o;
+    o.n1 = hubPatches;
+    o.hubLabels = hubPatches > 0;
     o.compress = compact;
     o.compact = compact;
     o.n2 = n2;
@@ -70,6 +72,12 @@ int main(int argc, char** argv) {
 
         blobSeeds(blobs, "grid", planeGrid(5, 5, 1.0, 0.1, 2), 2);
         blobSeeds(blobs, "torus", torus(1.0, 0.4, 8, 6), 3);
+        {  // hub labels: several first-layer patches, as a file and as a bare flatbuffer
+            const std::vector<uint8_t> blob = bakeSmall(planeGrid(9, 9, 1.0, 0.1, 3), 2, false, 4);
+            writeSeed(blobs / "hubs-file", 0, blob);
+            writeSeed(blobs / "hubs-flatbuffer", 1,
+                      std::vector<uint8_t>(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end()));
+        }
         Mesh pair = planeGrid(3, 3, 1.0);
         const Mesh other = planeGrid(2, 2, 1.0);
         const uint32_t offset = pair.vertexCount();

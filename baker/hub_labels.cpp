@@ -1,0 +1,410 @@
+#include "hub_labels.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+
+#include "parallel.h"
+#include "vorogeo_distance_coding.h"
+#include "vorogeo_generated.h"
+
+namespace vorogeo {
+
+namespace {
+
+constexpr uint32_t kNo = UINT32_MAX;
+constexpr uint32_t kNoPath = VG_CODING_NO_PATH;
+constexpr double kLargestStep = 65534.0;
+// Labels: the largest takes this many steps, so that the runtime's 16-bit sums of a
+// label and a distance inside a patch stay below 65535 ("no path").
+constexpr double kLargestLabelStep = 40000.0;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The parts of the graph buffer the labels are made of.
+struct View {
+    const fb::Graph* g;
+    uint32_t nodes, firstCount, secondCount;
+
+    const fb::PatchRecord& first(uint32_t p) const { return *g->first_patches()->Get(p); }
+    const fb::PatchRecord& second(uint32_t p) const { return *g->second_patches()->Get(p); }
+    uint32_t slot(uint64_t k) const { return g->slots()->Get(uint32_t(k)); }
+    bool active(uint32_t node) const { return (g->node_flags()->Get(node) & 1u) == 0; }
+    uint32_t firstQuantum(uint64_t k) const { return vg_coding_get(g->first_distances()->data(), k); }
+    uint32_t secondQuantum(uint64_t k) const { return vg_coding_get(g->second_distances()->data(), k); }
+};
+
+// Dijkstra over node ids with lazily deleted heap entries and stamped labels, reused
+// across runs by one thread.
+struct Dijkstra {
+    std::vector<double> dist;
+    std::vector<uint32_t> stamp;
+    std::vector<uint8_t> done;
+    std::vector<std::pair<double, uint32_t>> heap;
+    uint32_t generation = 0;
+
+    void begin(size_t n) {
+        if (dist.size() != n) {
+            dist.assign(n, kInf);
+            stamp.assign(n, 0);
+            done.assign(n, 0);
+            generation = 0;
+        }
+        ++generation;
+        heap.clear();
+    }
+    double at(uint32_t v) const { return stamp[v] == generation ? dist[v] : kInf; }
+    bool settled(uint32_t v) const { return stamp[v] == generation && done[v]; }
+    void offer(uint32_t v, double d) {
+        if (stamp[v] != generation) {
+            stamp[v] = generation;
+            done[v] = 0;
+            dist[v] = kInf;
+        }
+        if (done[v] || !(d < dist[v])) return;
+        dist[v] = d;
+        heap.push_back({d, v});
+        std::push_heap(heap.begin(), heap.end(), std::greater<>());
+    }
+    // The next node to settle, kNo when none is left.
+    uint32_t next() {
+        while (!heap.empty()) {
+            std::pop_heap(heap.begin(), heap.end(), std::greater<>());
+            const uint32_t v = heap.back().second;
+            heap.pop_back();
+            if (done[v]) continue;
+            done[v] = 1;
+            return v;
+        }
+        return kNo;
+    }
+};
+
+double centroidDistance(const std::vector<double>& c, uint32_t a, uint32_t b) {
+    const double dx = c[3 * a] - c[3 * b], dy = c[3 * a + 1] - c[3 * b + 1], dz = c[3 * a + 2] - c[3 * b + 2];
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+// The tree of patch sets: every set split in two halves along its longest extent (or
+// into its connected parts, which need no hubs between them).
+class TreeBuilder {
+public:
+    TreeBuilder(const View& v, HubLabels& out) : v_(v), out_(out) {
+        const uint32_t F = v.firstCount;
+        centroid_.assign(size_t(F) * 3, 0.0);
+        std::vector<uint32_t> count(F, 0);
+        for (uint32_t p = 0; p < F; ++p) {
+            const fb::PatchRecord& r = v.first(p);
+            for (uint32_t k = 0; k < r.slot_count(); ++k) {
+                const uint32_t vertex = v.g->node_vertex()->Get(v.slot(r.slot_begin() + k));
+                for (int c = 0; c < 3; ++c) centroid_[3 * p + c] += v.g->positions()->Get(3 * vertex + c);
+                ++count[p];
+            }
+            for (int c = 0; c < 3; ++c) centroid_[3 * p + c] /= std::max<uint32_t>(1, count[p]);
+        }
+        adjacency_.assign(F, {});
+        const auto* begin = v.g->node_first_begin();
+        for (uint32_t n = 0; n < v.nodes; ++n)
+            for (uint32_t a = begin->Get(n); a < begin->Get(n + 1); ++a)
+                for (uint32_t b = begin->Get(n); b < begin->Get(n + 1); ++b) {
+                    const uint32_t p = v.g->node_first()->Get(a)->patch(), q = v.g->node_first()->Get(b)->patch();
+                    if (p != q) adjacency_[p].push_back(q);
+                }
+        for (auto& list : adjacency_) {
+            std::sort(list.begin(), list.end());
+            list.erase(std::unique(list.begin(), list.end()), list.end());
+        }
+        inSet_.assign(F, 0);
+        out_.firstLeaf.assign(F, kNo);
+    }
+
+    uint32_t build(std::vector<uint32_t> set, uint32_t parent) {
+        const uint32_t id = uint32_t(out_.tree.size());
+        out_.tree.push_back(HubTreeNode{parent, 0, 0, 0});
+        depth_.push_back(parent == kNo ? 0 : depth_[parent] + 1);
+        if (set.size() == 1) {
+            out_.firstLeaf[set[0]] = id;
+            return id;
+        }
+        std::vector<uint32_t> a, b;
+        split(set, a, b);
+        build(std::move(a), id);
+        build(std::move(b), id);
+        return id;
+    }
+
+    uint32_t lca(uint32_t a, uint32_t b) const {
+        while (depth_[a] > depth_[b]) a = out_.tree[a].parent;
+        while (depth_[b] > depth_[a]) b = out_.tree[b].parent;
+        while (a != b) {
+            a = out_.tree[a].parent;
+            b = out_.tree[b].parent;
+        }
+        return a;
+    }
+
+private:
+    // Distances from `source` over the patch adjacency inside the marked set.
+    std::vector<double> distancesFrom(uint32_t source) {
+        std::vector<double> d(v_.firstCount, kInf);
+        std::vector<std::pair<double, uint32_t>> heap{{0.0, source}};
+        d[source] = 0;
+        while (!heap.empty()) {
+            std::pop_heap(heap.begin(), heap.end(), std::greater<>());
+            const auto [du, u] = heap.back();
+            heap.pop_back();
+            if (du > d[u]) continue;
+            for (uint32_t w : adjacency_[u]) {
+                if (!inSet_[w]) continue;
+                const double dw = du + centroidDistance(centroid_, u, w);
+                if (dw < d[w]) {
+                    d[w] = dw;
+                    heap.push_back({dw, w});
+                    std::push_heap(heap.begin(), heap.end(), std::greater<>());
+                }
+            }
+        }
+        return d;
+    }
+
+    static uint32_t farthest(const std::vector<uint32_t>& set, const std::vector<double>& d) {
+        uint32_t best = set[0];
+        for (uint32_t p : set)
+            if (d[p] > d[best]) best = p;
+        return best;
+    }
+
+    void split(const std::vector<uint32_t>& set, std::vector<uint32_t>& a, std::vector<uint32_t>& b) {
+        for (uint32_t p : set) inSet_[p] = 1;
+        const std::vector<double> d0 = distancesFrom(set[0]);
+        bool connected = true;
+        for (uint32_t p : set) connected &= std::isfinite(d0[p]);
+        if (!connected) {  // its connected parts: the one of set[0], and the rest
+            for (uint32_t p : set) (std::isfinite(d0[p]) ? a : b).push_back(p);
+        } else {
+            const uint32_t ea = farthest(set, d0);
+            const std::vector<double> da = distancesFrom(ea);
+            const std::vector<double> db = distancesFrom(farthest(set, da));
+            std::vector<uint32_t> order(set);
+            std::sort(order.begin(), order.end(), [&](uint32_t p, uint32_t q) {
+                const double kp = da[p] - db[p], kq = da[q] - db[q];
+                return kp != kq ? kp < kq : p < q;
+            });
+            a.assign(order.begin(), order.begin() + order.size() / 2);
+            b.assign(order.begin() + order.size() / 2, order.end());
+            std::sort(a.begin(), a.end());
+            std::sort(b.begin(), b.end());
+        }
+        for (uint32_t p : set) inSet_[p] = 0;
+    }
+
+    const View& v_;
+    HubLabels& out_;
+    std::vector<double> centroid_;
+    std::vector<std::vector<uint32_t>> adjacency_;
+    std::vector<uint8_t> inSet_;
+    std::vector<uint32_t> depth_;
+};
+
+uint16_t steps(double d, double scale) {
+    if (!std::isfinite(d)) return kHubUnreachable;
+    return uint16_t(std::min(kLargestStep, std::floor(d / scale + 0.5)));
+}
+
+// Inner rows of first-layer patch f: Dijkstra inside f's second-layer node graph from
+// each of f's first-layer nodes, as the runtime's search relaxes rows (active nodes only).
+void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children, std::vector<uint32_t>& nodes,
+               std::vector<double>& values) {
+    nodes.clear();
+    for (uint32_t c : children) {
+        const fb::PatchRecord& q = v.second(c);
+        for (uint32_t j = 0; j < q.node_count(); ++j) {
+            const uint32_t n = v.slot(q.slot_begin() + j);
+            if (v.active(n)) nodes.push_back(n);
+        }
+    }
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    const fb::PatchRecord& fr = v.first(f);
+    const uint32_t K = fr.slot_count();
+    values.assign(nodes.size() * K, kInf);
+    Dijkstra dj;
+    auto relaxRow = [&](const fb::PatchRecord& q, uint32_t i, double du) {
+        const uint64_t row = q.matrix_begin() + uint64_t(i) * q.node_count();
+        for (uint32_t j = 0; j < q.node_count(); ++j) {
+            if (j == i) continue;
+            const uint32_t quantum = v.secondQuantum(row + j);
+            if (quantum == kNoPath) continue;
+            const uint32_t n = v.slot(q.slot_begin() + j);
+            if (!v.active(n)) continue;
+            dj.offer(n, du + double(quantum) * double(q.scale()));
+        }
+    };
+    // The rows of node n in f's second-layer patches.
+    auto relaxNode = [&](uint32_t n, double du) {
+        const auto* begin = v.g->node_second_begin();
+        for (uint32_t m = begin->Get(n); m < begin->Get(n + 1); ++m) {
+            const fb::Membership* ms = v.g->node_second()->Get(m);
+            const fb::PatchRecord& q = v.second(ms->patch());
+            if (q.parent() == f) relaxRow(q, ms->slot(), du);
+        }
+    };
+    for (uint32_t k = 0; k < K; ++k) {
+        const uint32_t b = v.slot(fr.slot_begin() + k);
+        dj.begin(v.nodes);
+        if (v.active(b)) dj.offer(b, 0.0);
+        else relaxNode(b, 0.0);  // merged away: it enters through its rows, as an endpoint does
+        for (uint32_t u = dj.next(); u != kNo; u = dj.next()) relaxNode(u, dj.at(u));
+        for (size_t r = 0; r < nodes.size(); ++r) values[r * K + k] = dj.at(nodes[r]);
+    }
+}
+
+}  // namespace
+
+HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProgress& progress) {
+    const auto start = std::chrono::steady_clock::now();
+    HubLabels out;
+    View v;
+    v.g = fb::GetGraph(flatbuffer.data());
+    v.nodes = v.g->node_vertex()->size();
+    v.firstCount = v.g->first_patches()->size();
+    v.secondCount = v.g->second_patches()->size();
+    if (v.firstCount == 0) return out;
+
+    // The tree, and every first-layer node's tree node: where its patches part ways.
+    TreeBuilder builder(v, out);
+    std::vector<uint32_t> all(v.firstCount);
+    for (uint32_t p = 0; p < v.firstCount; ++p) all[p] = p;
+    builder.build(all, kNo);
+    const uint32_t T = uint32_t(out.tree.size());
+    std::vector<std::pair<uint32_t, uint32_t>> hubs;  // (tree node, graph node)
+    const auto* firstBegin = v.g->node_first_begin();
+    for (uint32_t n = 0; n < v.nodes; ++n) {
+        uint32_t t = kNo;
+        for (uint32_t m = firstBegin->Get(n); m < firstBegin->Get(n + 1); ++m) {
+            const uint32_t leaf = out.firstLeaf[v.g->node_first()->Get(m)->patch()];
+            t = t == kNo ? leaf : builder.lca(t, leaf);
+        }
+        if (t != kNo) hubs.push_back({t, n});
+    }
+    std::sort(hubs.begin(), hubs.end());
+    const uint32_t H = uint32_t(hubs.size());
+    out.nodeHub.assign(v.nodes, kNo);
+    std::vector<uint32_t> hubTree(H), hubNode(H);
+    for (uint32_t h = 0; h < H; ++h) {
+        hubTree[h] = hubs[h].first;
+        hubNode[h] = hubs[h].second;
+        out.nodeHub[hubs[h].second] = h;
+        ++out.tree[hubs[h].first].hubCount;
+    }
+    for (uint32_t t = 0, next = 0; t < T; ++t) {
+        out.tree[t].hubBegin = next;
+        next += out.tree[t].hubCount;
+        const uint32_t p = out.tree[t].parent;
+        out.tree[t].pathBegin = p == kNo ? 0 : out.tree[p].pathBegin + out.tree[p].hubCount;
+    }
+    // Preorder: a subtree is a range of tree nodes, and so of hubs.
+    std::vector<uint32_t> subtreeEnd(T);
+    for (uint32_t t = 0; t < T; ++t) subtreeEnd[t] = t + 1;
+    for (uint32_t t = T; t-- > 1;) subtreeEnd[out.tree[t].parent] = std::max(subtreeEnd[out.tree[t].parent], subtreeEnd[t]);
+    auto hubEnd = [&](uint32_t t) { return subtreeEnd[t] < T ? out.tree[subtreeEnd[t]].hubBegin : H; };
+    auto pathLength = [&](uint32_t t) { return out.tree[t].pathBegin + out.tree[t].hubCount; };
+    out.labelBegin.assign(H + 1, 0);
+    for (uint32_t h = 0; h < H; ++h) out.labelBegin[h + 1] = out.labelBegin[h] + pathLength(hubTree[h]);
+
+    // Inner rows, a first-layer patch per job.
+    std::vector<std::vector<uint32_t>> children(v.firstCount), innerNodes(v.firstCount);
+    for (uint32_t q = 0; q < v.secondCount; ++q) children[v.second(q).parent()].push_back(q);
+    std::vector<std::vector<double>> innerValues(v.firstCount);
+    std::atomic<size_t> done{0};
+    std::mutex progressMutex;
+    const size_t jobs = size_t(v.firstCount) + H;
+    const size_t step = std::max<size_t>(1, jobs / 100);
+    auto tick = [&] {
+        const size_t n = ++done;
+        if (progress && (n % step == 0 || n == jobs)) {
+            std::lock_guard<std::mutex> lock(progressMutex);
+            progress(double(n) / double(jobs));
+        }
+    };
+    parallelFor(v.firstCount, [&](size_t f) {
+        innerRows(v, uint32_t(f), children[f], innerNodes[f], innerValues[f]);
+        tick();
+    });
+
+    // The overlay graph once, as adjacency lists with lengths (every first-layer row of
+    // every node), for the label runs below.
+    std::vector<uint64_t> edgeBegin(size_t(v.nodes) + 1, 0);
+    for (uint32_t u = 0; u < v.nodes; ++u) {
+        uint64_t edges = 0;
+        for (uint32_t m = firstBegin->Get(u); m < firstBegin->Get(u + 1); ++m)
+            edges += v.first(v.g->node_first()->Get(m)->patch()).slot_count();
+        edgeBegin[u + 1] = edgeBegin[u] + edges;
+    }
+    std::vector<uint32_t> edgeTo(edgeBegin.back());
+    std::vector<double> edgeLength(edgeBegin.back(), kInf);
+    parallelFor(v.nodes, [&](size_t u) {
+        uint64_t e = edgeBegin[u];
+        for (uint32_t m = firstBegin->Get(uint32_t(u)); m < firstBegin->Get(uint32_t(u) + 1); ++m) {
+            const fb::Membership* ms = v.g->node_first()->Get(m);
+            const fb::PatchRecord& p = v.first(ms->patch());
+            const uint64_t row = p.matrix_begin() + uint64_t(ms->slot()) * p.slot_count();
+            for (uint32_t j = 0; j < p.slot_count(); ++j, ++e) {
+                edgeTo[e] = v.slot(p.slot_begin() + j);
+                const uint32_t quantum = v.firstQuantum(row + j);
+                if (j != ms->slot() && quantum != kNoPath) edgeLength[e] = double(quantum) * double(p.scale());
+            }
+        }
+    });
+
+    // Labels: one overlay Dijkstra per hub x, stopped once every hub whose label holds x
+    // (the hubs of x's subtree) is settled.
+    std::vector<double> labelValue(out.labelBegin[H], kInf);
+    PerThread<Dijkstra> scratch;
+    parallelFor(H, [&](size_t x) {
+        Dijkstra& dj = scratch.local();
+        const uint32_t t = hubTree[x];
+        const uint32_t position = out.tree[t].pathBegin + (uint32_t(x) - out.tree[t].hubBegin);
+        const uint32_t targetsBegin = out.tree[t].hubBegin, targetsEnd = hubEnd(t);
+        uint32_t remaining = targetsEnd - targetsBegin;
+        dj.begin(v.nodes);
+        dj.offer(hubNode[x], 0.0);
+        for (uint32_t u = dj.next(); u != kNo; u = dj.next()) {
+            const uint32_t hu = out.nodeHub[u];
+            if (hu != kNo && hu >= targetsBegin && hu < targetsEnd && --remaining == 0) break;
+            const double du = dj.at(u);
+            for (uint64_t e = edgeBegin[u]; e < edgeBegin[u + 1]; ++e)
+                if (edgeLength[e] < kInf) dj.offer(edgeTo[e], du + edgeLength[e]);
+        }
+        for (uint32_t b = targetsBegin; b < targetsEnd; ++b) labelValue[out.labelBegin[b] + position] = dj.at(hubNode[b]);
+        tick();
+    });
+
+    // 16-bit steps: one scale for all labels, one per first-layer patch for inner rows.
+    double largest = 0;
+    for (double d : labelValue)
+        if (std::isfinite(d)) largest = std::max(largest, d);
+    out.labelScale = largest > 0 ? float(largest / kLargestLabelStep) : 1.0f;
+    out.labels.resize(labelValue.size());
+    for (size_t k = 0; k < labelValue.size(); ++k) out.labels[k] = steps(labelValue[k], out.labelScale);
+    out.innerBegin.assign(1, 0);
+    out.innerMatrixBegin.assign(1, 0);
+    for (uint32_t f = 0; f < v.firstCount; ++f) {
+        double big = 0;
+        for (double d : innerValues[f])
+            if (std::isfinite(d)) big = std::max(big, d);
+        const float scale = big > 0 ? float(big / kLargestStep) : 1.0f;
+        out.innerScale.push_back(scale);
+        out.innerNode.insert(out.innerNode.end(), innerNodes[f].begin(), innerNodes[f].end());
+        out.innerBegin.push_back(uint32_t(out.innerNode.size()));
+        for (double d : innerValues[f]) out.inner.push_back(steps(d, scale));
+        out.innerMatrixBegin.push_back(out.inner.size());
+    }
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+}  // namespace vorogeo

@@ -1,0 +1,59 @@
+// Hub labels for microsecond point-to-point queries (bake --hub-labels), in the manner of
+// route planners' separator-based hub labelling, built on the baked graph itself.
+//
+// The first-layer patches are split in two again and again (a binary tree of patch sets,
+// leaves single patches). Every first-layer node (a vertex shared by first-layer patches)
+// becomes the "hub" of the tree node where its patches part ways: the hubs of a tree node
+// separate its two halves, since an overlay edge never leaves one first-layer patch. A
+// shortest path's highest hub therefore lies on the tree path of every node on it, so:
+//
+//   * label of hub b: its overlay distance to every hub on the tree path from the root to
+//     b's own tree node (concatenated in path order, so labels of one tree path align);
+//   * inner rows of first-layer patch P: the distance inside P (over its second-layer node
+//     graph) from each of P's second-layer nodes to each of P's first-layer nodes.
+//
+// A query from vertex s in P to t in another patch reads s's patch row to its patch's
+// nodes, the inner rows (s's distance to every node of P), the labels of P's nodes
+// (s's distance to every hub on P's tree path), and the same backwards from t: a few
+// ten thousand additions instead of a graph search. The distances are those of the
+// runtime's point-to-point graph (first-layer overlay away from the endpoints, second
+// layer inside their first-layer patches), read from the same quantised rows.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace vorogeo {
+
+struct HubTreeNode {
+    uint32_t parent;     // UINT32_MAX at the root (tree nodes are in preorder: parent first)
+    uint32_t hubBegin;   // its hubs [hubBegin, hubBegin + hubCount) in hub order
+    uint32_t hubCount;
+    uint32_t pathBegin;  // position of its first hub on its tree path (sum over its ancestors)
+};
+
+struct HubLabels {
+    std::vector<HubTreeNode> tree;
+    std::vector<uint32_t> firstLeaf;     // per first-layer patch: its leaf tree node
+    std::vector<uint32_t> nodeHub;       // per graph node: hub number, UINT32_MAX if none
+    float labelScale = 1.0f;             // distance per label step
+    std::vector<uint64_t> labelBegin;    // H + 1 offsets into labels
+    std::vector<uint16_t> labels;        // hub b: one step count per hub on its tree path
+    std::vector<uint32_t> innerBegin;    // first-layer patches + 1 offsets into innerNode
+    std::vector<uint32_t> innerNode;     // per first-layer patch: its active second-layer nodes, sorted
+    std::vector<float> innerScale;       // per first-layer patch: distance per inner step
+    std::vector<uint64_t> innerMatrixBegin;  // first-layer patches + 1 offsets into inner
+    std::vector<uint16_t> inner;         // per first-layer patch: inner node x first-layer slot
+    double seconds = 0;
+};
+
+constexpr uint16_t kHubUnreachable = 65535;
+
+using HubProgress = std::function<void(double fraction)>;
+
+// Builds the labels of `flatbuffer` (a verified Graph buffer, distances not coded).
+// Deterministic for any number of threads.
+HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProgress& progress = HubProgress());
+
+}  // namespace vorogeo

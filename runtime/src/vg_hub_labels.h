@@ -1,0 +1,20 @@
+// Point-to-point distance from hub labels (bake --hub-labels; baker/hub_labels.h has the
+// construction and why it is exact on the graph): s's patch row and its first-layer
+// patch's inner rows give s's distance to that patch's first-layer nodes; their labels
+// give s's distance to every hub on the patch's tree path; t's side reads the same rows
+// backwards and meets s's distances next to t, at t's patch nodes and across the mesh
+// edges between them (the unfolded crossings of the directed search). No search, no
+// queue: a few ten thousand additions over contiguous rows.
+// Internal to the runtime.
+#pragma once
+
+#include "vg_workspace.h"
+
+namespace vg {
+
+// The distance between vertices s and t (+inf beyond maxDistance) into *out. False, with
+// *out untouched, when the blob has no labels or s and t share a first-layer patch (a
+// shortest path may stay inside it, which only the search sees).
+bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance, float* out);
+
+}  // namespace vg

@@ -1,0 +1,140 @@
+// Hub labels (bake --hub-labels, baker/hub_labels.h, runtime/src/vg_hub_labels.cpp): they
+// answer like the search on the same graph, symmetric, deterministic across thread
+// counts, and a blob whose label tables do not add up is refused.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include <tbb/global_control.h>
+
+#include "bake.h"
+#include "generators.h"
+#include "runtime_graph.h"
+#include "vg_hub_labels.h"
+#include "vorogeo.h"
+#include "vorogeo_container.h"
+#include "vorogeo_generated.h"
+
+using namespace vorogeo;
+using tools::RuntimeGraph;
+using tools::RuntimeWorkspace;
+
+namespace {
+
+Mesh labelledMesh() { return bumpyTorus(120, 40); }  // 4,800 vertices
+
+std::vector<uint8_t> bakeLabelled(bool compress, size_t threads = 0) {
+    BakeOptions o;
+    o.n1 = 10;
+    o.hubLabels = true;
+    o.compress = compress;
+    BakeReport report;
+    if (threads == 0) return bakeMesh(labelledMesh(), o, report, nullptr);
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    return bakeMesh(labelledMesh(), o, report, nullptr);
+}
+
+const std::vector<uint8_t>& labelledBlob() {
+    static const std::vector<uint8_t> blob = bakeLabelled(false);
+    return blob;
+}
+
+RuntimeGraph openOrFail(const std::vector<uint8_t>& blob) {
+    RuntimeGraph g;
+    std::string error;
+    REQUIRE(g.open(blob, error));
+    return g;
+}
+
+void reseal(std::vector<uint8_t>& blob) {
+    vg_store_le64(blob.data() + 32, vg_checksum64(blob.data() + VG_CONTAINER_HEADER_SIZE,
+                                                  blob.size() - VG_CONTAINER_HEADER_SIZE));
+}
+
+}  // namespace
+
+TEST_CASE("hub labels answer like the directed search on the same graph", "[hub]") {
+    RuntimeGraph g = openOrFail(labelledBlob());
+    REQUIRE(g.graph()->hubTreeCount > 1);
+    RuntimeWorkspace labels(g.graph()), directed(g.graph());
+    directed.setSearch(VG_SEARCH_DIRECTED);
+    const uint32_t V = vg_vertex_count(g.graph());
+    std::mt19937 rng(7);
+    std::uniform_int_distribution<uint32_t> pick(0, V - 1);
+    size_t answered = 0, pairs = 400;
+    double worst = 0, sum = 0;
+    for (size_t i = 0; i < pairs; ++i) {
+        const uint32_t s = pick(rng), t = pick(rng);
+        float byLabels = 0;
+        const bool labelled = vg::hubDistance(*g.graph(), *labels.get(), s, t, __builtin_inff(), &byLabels);
+        answered += labelled;
+        const float viaApi = labels.distance(s, t), bySearch = directed.distance(s, t);
+        if (labelled) CHECK(viaApi == byLabels);
+        else CHECK(viaApi == bySearch);  // the search answers pairs the labels leave
+        REQUIRE(std::isfinite(bySearch));
+        if (bySearch > 0) {
+            const double diff = std::fabs(double(viaApi) - bySearch) / bySearch;
+            worst = std::max(worst, diff);
+            sum += diff;
+        }
+        CHECK(labels.distance(t, s) == viaApi);  // symmetric, bit for bit
+    }
+    // Most pairs lie in different first-layer patches; the labels and the search differ
+    // only in rounding (16-bit label steps, a larger share of a short pair) and in which
+    // border crossings they meet.
+    CHECK(answered > pairs / 2);
+    CHECK(sum / double(pairs) < 0.001);
+    CHECK(worst < 0.01);
+}
+
+TEST_CASE("hub labels: a bounded query and the modes", "[hub]") {
+    RuntimeGraph g = openOrFail(labelledBlob());
+    RuntimeWorkspace ws(g.graph());
+    const uint32_t V = vg_vertex_count(g.graph());
+    float d = 0, within = 0;
+    uint32_t s = 0, t = V - 1;
+    REQUIRE(vg_distance(g.graph(), ws.get(), s, t, &d) == VG_OK);
+    REQUIRE(std::isfinite(d));
+    REQUIRE(vg_distance_within(g.graph(), ws.get(), s, t, 0.5f * d, &within) == VG_OK);
+    CHECK(std::isinf(within));
+    REQUIRE(vg_distance_within(g.graph(), ws.get(), s, t, d, &within) == VG_OK);
+    CHECK(within == d);
+    CHECK(vg_workspace_set_search(ws.get(), VG_SEARCH_HUB_LABELS) == VG_OK);
+}
+
+TEST_CASE("hub labels: the same bytes for any thread count", "[hub]") {
+    CHECK(bakeLabelled(true, 1) == bakeLabelled(true, 2));
+}
+
+TEST_CASE("hub labels: tables that do not add up are refused", "[hub]") {
+    const std::vector<uint8_t>& blob = labelledBlob();
+    const fb::Graph* g = fb::GetGraph(blob.data() + VG_CONTAINER_HEADER_SIZE);
+    REQUIRE(g->hub_tree() != nullptr);
+    auto offsetOf = [&](const void* p) { return size_t(static_cast<const uint8_t*>(p) - blob.data()); };
+    auto refused = [&](size_t offset, uint32_t value) {
+        std::vector<uint8_t> bad(blob);
+        std::memcpy(bad.data() + offset, &value, 4);
+        reseal(bad);
+        tools::AlignedBytes copy, memory;
+        copy.resize(bad.size());
+        std::memcpy(copy.data(), bad.data(), bad.size());
+        size_t need = 0;
+        REQUIRE(vg_open_size(copy.data(), bad.size(), &need) == VG_OK);
+        memory.resize(need);
+        const vg_graph* graph = nullptr;
+        return vg_open(copy.data(), bad.size(), memory.data(), need, &graph) == VG_ERR_CORRUPT_CONTENT;
+    };
+    const uint32_t H = g->hub_label_begin()->size() - 1;
+    CHECK(refused(offsetOf(g->node_hub()->data()), H));                      // a hub out of range
+    CHECK(refused(offsetOf(g->hub_tree()->Get(1)), 7));                      // a parent after its child
+    CHECK(refused(offsetOf(g->hub_tree()->Get(1)) + 12, 0xFFFFu));           // a wrong path position
+    CHECK(refused(offsetOf(g->hub_first_leaf()->data()), uint32_t(g->hub_tree()->size())));
+    CHECK(refused(offsetOf(g->hub_label_begin()->data()) + 8, 0xFFFFFFFFu));  // a label past the end
+    CHECK(refused(offsetOf(g->hub_inner_node()->data()), 0xFFFFFFF0u));       // a node out of range
+    CHECK(refused(offsetOf(g->hub_inner_begin()->data()) + 4, 0xFFFFFFF0u));
+    CHECK(refused(offsetOf(g->hub_inner_matrix_begin()->data()) + 8, 3));    // a matrix of the wrong size
+    const uint32_t nan = 0x7FC00000u;
+    CHECK(refused(offsetOf(g->hub_inner_scale()->data()), nan));
+}

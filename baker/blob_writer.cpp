@@ -240,7 +240,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
                             bytesOf(faceTwin) + bytesOf(partition.faceSecond) + bytesOf(vertexHalfedge) +
                             bytesOf(hubs.tree) + bytesOf(hubs.firstLeaf) + bytesOf(hubs.nodeHub) +
                             bytesOf(hubs.labelBegin) + bytesOf(hubs.labels) + bytesOf(hubs.innerBegin) +
-                            bytesOf(hubs.innerNode) + bytesOf(hubs.innerScale) + bytesOf(hubs.innerMatrixBegin) + bytesOf(hubs.inner) + 4096,
+                            bytesOf(hubs.innerNode) + bytesOf(hubs.innerMatrixBegin) + bytesOf(hubs.inner) + 4096,
                         V);
     flatbuffers::FlatBufferBuilder b(size_t(64) << 20);
     auto posV = b.CreateVector(positions);
@@ -274,7 +274,6 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     flatbuffers::Offset<flatbuffers::Vector<uint32_t>> hlfV, nhV, hibV, hinV;
     flatbuffers::Offset<flatbuffers::Vector<uint64_t>> hlbV, himV;
     flatbuffers::Offset<flatbuffers::Vector<uint16_t>> hlV, hiV;
-    flatbuffers::Offset<flatbuffers::Vector<float>> hisV;
     if (withHubs) {
         htV = b.CreateVectorOfStructs(hubTree);
         hlfV = b.CreateVector(hubs.firstLeaf);
@@ -283,7 +282,6 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
         hlV = b.CreateVector(hubs.labels);
         hibV = b.CreateVector(hubs.innerBegin);
         hinV = b.CreateVector(hubs.innerNode);
-        hisV = b.CreateVector(hubs.innerScale);
         himV = b.CreateVector(hubs.innerMatrixBegin);
         hiV = b.CreateVector(hubs.inner);
     }
@@ -328,7 +326,6 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
         g.add_hub_labels(hlV);
         g.add_hub_inner_begin(hibV);
         g.add_hub_inner_node(hinV);
-        g.add_hub_inner_scale(hisV);
         g.add_hub_inner_matrix_begin(himV);
         g.add_hub_inner(hiV);
     }

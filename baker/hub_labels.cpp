@@ -7,6 +7,8 @@
 #include <limits>
 #include <mutex>
 #include <stdexcept>
+#include <cstdio>
+#include <cstdlib>
 
 #include "parallel.h"
 #include "vorogeo_distance_coding.h"
@@ -18,9 +20,8 @@ namespace {
 
 constexpr uint32_t kNo = UINT32_MAX;
 constexpr uint32_t kNoPath = VG_CODING_NO_PATH;
-constexpr double kLargestStep = 65534.0;
-// Labels: the largest takes this many steps, so that the runtime's 16-bit sums of a
-// label and a distance inside a patch stay below 65535 ("no path").
+// The largest label or inner entry takes this many steps, so that the runtime's 16-bit
+// sums of a label and a distance inside a patch stay below 65535 ("no path").
 constexpr double kLargestLabelStep = 40000.0;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -41,6 +42,7 @@ struct View {
 // across runs by one thread.
 struct Dijkstra {
     std::vector<double> dist;
+    std::vector<uint32_t> via;  // the patch whose row gave the label (kNo: none)
     std::vector<uint32_t> stamp;
     std::vector<uint8_t> done;
     std::vector<std::pair<double, uint32_t>> heap;
@@ -49,6 +51,7 @@ struct Dijkstra {
     void begin(size_t n) {
         if (dist.size() != n) {
             dist.assign(n, kInf);
+            via.assign(n, kNo);
             stamp.assign(n, 0);
             done.assign(n, 0);
             generation = 0;
@@ -58,7 +61,7 @@ struct Dijkstra {
     }
     double at(uint32_t v) const { return stamp[v] == generation ? dist[v] : kInf; }
     bool settled(uint32_t v) const { return stamp[v] == generation && done[v]; }
-    void offer(uint32_t v, double d) {
+    void offer(uint32_t v, double d, uint32_t from = kNo) {
         if (stamp[v] != generation) {
             stamp[v] = generation;
             done[v] = 0;
@@ -66,6 +69,7 @@ struct Dijkstra {
         }
         if (done[v] || !(d < dist[v])) return;
         dist[v] = d;
+        via[v] = from;
         heap.push_back({d, v});
         std::push_heap(heap.begin(), heap.end(), std::greater<>());
     }
@@ -88,7 +92,7 @@ double centroidDistance(const std::vector<double>& c, uint32_t a, uint32_t b) {
     return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
-// The tree of patch sets: every set split in two halves along its longest extent (or
+// The tree of patch sets: every set split in two by the smallest separator found (or
 // into its connected parts, which need no hubs between them).
 class TreeBuilder {
 public:
@@ -118,6 +122,7 @@ public:
             list.erase(std::unique(list.begin(), list.end()), list.end());
         }
         inSet_.assign(F, 0);
+        count_.assign(v.nodes, {0, 0});
         out_.firstLeaf.assign(F, kNo);
     }
 
@@ -177,6 +182,45 @@ private:
         return best;
     }
 
+    // Nodes shared by the two sides if the first `cut` patches of `order` go to one side:
+    // for every cut position in [lo, hi], by moving patches over one at a time.
+    uint32_t bestCut(const std::vector<uint32_t>& order, size_t lo, size_t hi, size_t& at) {
+        for (uint32_t p : order)
+            for (uint32_t n : nodesOf(p)) count_[n] = {0, 0};
+        for (uint32_t p : order)
+            for (uint32_t n : nodesOf(p)) ++count_[n].second;
+        uint32_t shared = 0, best = UINT32_MAX;
+        for (size_t k = 0; k < hi; ++k) {
+            for (uint32_t n : nodesOf(order[k])) {
+                auto& c = count_[n];
+                const bool before = c.first > 0 && c.second > 0;
+                ++c.first;
+                --c.second;
+                const bool after = c.first > 0 && c.second > 0;
+                shared += uint32_t(after) - uint32_t(before);
+            }
+            const size_t position = k + 1;
+            // The smallest separator, and among equal ones the most even split.
+            const size_t mid = order.size() / 2;
+            auto offMid = [&](size_t x) { return x > mid ? x - mid : mid - x; };
+            if (position >= lo && (shared < best || (shared == best && offMid(position) < offMid(at)))) {
+                best = shared;
+                at = position;
+            }
+        }
+        return best;
+    }
+
+    std::vector<uint32_t> nodesOf(uint32_t p) const {
+        const fb::PatchRecord& r = v_.first(p);
+        std::vector<uint32_t> nodes(r.slot_count());
+        for (uint32_t k = 0; k < r.slot_count(); ++k) nodes[k] = v_.slot(r.slot_begin() + k);
+        return nodes;
+    }
+
+    // Two halves: the smallest separator (nodes shared across) over a few sweeps through
+    // the set, each cut between 30% and 70% of its patches: along the two patches farthest
+    // apart, and along the coordinate axes and diagonals.
     void split(const std::vector<uint32_t>& set, std::vector<uint32_t>& a, std::vector<uint32_t>& b) {
         for (uint32_t p : set) inSet_[p] = 1;
         const std::vector<double> d0 = distancesFrom(set[0]);
@@ -188,13 +232,34 @@ private:
             const uint32_t ea = farthest(set, d0);
             const std::vector<double> da = distancesFrom(ea);
             const std::vector<double> db = distancesFrom(farthest(set, da));
-            std::vector<uint32_t> order(set);
-            std::sort(order.begin(), order.end(), [&](uint32_t p, uint32_t q) {
-                const double kp = da[p] - db[p], kq = da[q] - db[q];
-                return kp != kq ? kp < kq : p < q;
-            });
-            a.assign(order.begin(), order.begin() + order.size() / 2);
-            b.assign(order.begin() + order.size() / 2, order.end());
+            std::vector<std::vector<double>> keys;
+            std::vector<double> key(v_.firstCount, 0.0);
+            for (uint32_t p : set) key[p] = da[p] - db[p];
+            keys.push_back(key);
+            const double directions[7][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
+            for (const auto& dir : directions) {
+                for (uint32_t p : set)
+                    key[p] = dir[0] * centroid_[3 * p] + dir[1] * centroid_[3 * p + 1] + dir[2] * centroid_[3 * p + 2];
+                keys.push_back(key);
+            }
+            const size_t n = set.size();
+            const size_t lo = std::max<size_t>(1, (3 * n) / 10), hi = std::max(lo, std::min(n - 1, (7 * n + 9) / 10));
+            uint32_t best = UINT32_MAX;
+            std::vector<uint32_t> bestOrder;
+            size_t bestAt = 0;
+            for (const auto& k : keys) {
+                std::vector<uint32_t> order(set);
+                std::sort(order.begin(), order.end(), [&](uint32_t p, uint32_t q) { return k[p] != k[q] ? k[p] < k[q] : p < q; });
+                size_t at = lo;
+                const uint32_t cut = bestCut(order, lo, hi, at);
+                if (cut < best) {
+                    best = cut;
+                    bestOrder = order;
+                    bestAt = at;
+                }
+            }
+            a.assign(bestOrder.begin(), bestOrder.begin() + bestAt);
+            b.assign(bestOrder.begin() + bestAt, bestOrder.end());
             std::sort(a.begin(), a.end());
             std::sort(b.begin(), b.end());
         }
@@ -207,11 +272,12 @@ private:
     std::vector<std::vector<uint32_t>> adjacency_;
     std::vector<uint8_t> inSet_;
     std::vector<uint32_t> depth_;
+    std::vector<std::pair<uint32_t, uint32_t>> count_;  // per node: its patches on each side
 };
 
 uint16_t steps(double d, double scale) {
     if (!std::isfinite(d)) return kHubUnreachable;
-    return uint16_t(std::min(kLargestStep, std::floor(d / scale + 0.5)));
+    return uint16_t(std::min(65534.0, std::floor(d / scale + 0.5)));
 }
 
 // Inner rows of first-layer patch f: Dijkstra inside f's second-layer node graph from
@@ -310,6 +376,13 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
     std::vector<uint32_t> subtreeEnd(T);
     for (uint32_t t = 0; t < T; ++t) subtreeEnd[t] = t + 1;
     for (uint32_t t = T; t-- > 1;) subtreeEnd[out.tree[t].parent] = std::max(subtreeEnd[out.tree[t].parent], subtreeEnd[t]);
+    if (std::getenv("VOROGEO_HUB_STATS")) {
+        std::vector<uint32_t> depth(T, 0);
+        for (uint32_t t = 1; t < T; ++t) depth[t] = depth[out.tree[t].parent] + 1;
+        for (uint32_t t = 0; t < T; ++t)
+            std::fprintf(stderr, "tree %u depth %u parent %d hubs %u path %u\n", t, depth[t], int(out.tree[t].parent),
+                         out.tree[t].hubCount, out.tree[t].pathBegin + out.tree[t].hubCount);
+    }
     auto hubEnd = [&](uint32_t t) { return subtreeEnd[t] < T ? out.tree[subtreeEnd[t]].hubBegin : H; };
     auto pathLength = [&](uint32_t t) { return out.tree[t].pathBegin + out.tree[t].hubCount; };
     out.labelBegin.assign(H + 1, 0);
@@ -344,7 +417,7 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
             edges += v.first(v.g->node_first()->Get(m)->patch()).slot_count();
         edgeBegin[u + 1] = edgeBegin[u] + edges;
     }
-    std::vector<uint32_t> edgeTo(edgeBegin.back());
+    std::vector<uint32_t> edgeTo(edgeBegin.back()), edgePatch(edgeBegin.back());
     std::vector<double> edgeLength(edgeBegin.back(), kInf);
     parallelFor(v.nodes, [&](size_t u) {
         uint64_t e = edgeBegin[u];
@@ -354,6 +427,7 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
             const uint64_t row = p.matrix_begin() + uint64_t(ms->slot()) * p.slot_count();
             for (uint32_t j = 0; j < p.slot_count(); ++j, ++e) {
                 edgeTo[e] = v.slot(p.slot_begin() + j);
+                edgePatch[e] = ms->patch();
                 const uint32_t quantum = v.firstQuantum(row + j);
                 if (j != ms->slot() && quantum != kNoPath) edgeLength[e] = double(quantum) * double(p.scale());
             }
@@ -375,32 +449,34 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
         for (uint32_t u = dj.next(); u != kNo; u = dj.next()) {
             const uint32_t hu = out.nodeHub[u];
             if (hu != kNo && hu >= targetsBegin && hu < targetsEnd && --remaining == 0) break;
+            // Not the row of the patch u was reached through: its matrix holds shortest paths
+            // inside the patch already (as the runtime's search skips it).
             const double du = dj.at(u);
+            const uint32_t from = dj.via[u];
             for (uint64_t e = edgeBegin[u]; e < edgeBegin[u + 1]; ++e)
-                if (edgeLength[e] < kInf) dj.offer(edgeTo[e], du + edgeLength[e]);
+                if (edgeLength[e] < kInf && edgePatch[e] != from) dj.offer(edgeTo[e], du + edgeLength[e], edgePatch[e]);
         }
         for (uint32_t b = targetsBegin; b < targetsEnd; ++b) labelValue[out.labelBegin[b] + position] = dj.at(hubNode[b]);
         tick();
     });
 
-    // 16-bit steps: one scale for all labels, one per first-layer patch for inner rows.
+    // 16-bit steps of one scale for labels and inner rows, so that the runtime adds them
+    // as they are; the largest value takes kLargestLabelStep steps.
     double largest = 0;
     for (double d : labelValue)
         if (std::isfinite(d)) largest = std::max(largest, d);
+    for (const auto& values : innerValues)
+        for (double d : values)
+            if (std::isfinite(d)) largest = std::max(largest, d);
     out.labelScale = largest > 0 ? float(largest / kLargestLabelStep) : 1.0f;
     out.labels.resize(labelValue.size());
     for (size_t k = 0; k < labelValue.size(); ++k) out.labels[k] = steps(labelValue[k], out.labelScale);
     out.innerBegin.assign(1, 0);
     out.innerMatrixBegin.assign(1, 0);
     for (uint32_t f = 0; f < v.firstCount; ++f) {
-        double big = 0;
-        for (double d : innerValues[f])
-            if (std::isfinite(d)) big = std::max(big, d);
-        const float scale = big > 0 ? float(big / kLargestStep) : 1.0f;
-        out.innerScale.push_back(scale);
         out.innerNode.insert(out.innerNode.end(), innerNodes[f].begin(), innerNodes[f].end());
         out.innerBegin.push_back(uint32_t(out.innerNode.size()));
-        for (double d : innerValues[f]) out.inner.push_back(steps(d, scale));
+        for (double d : innerValues[f]) out.inner.push_back(steps(d, out.labelScale));
         out.innerMatrixBegin.push_back(out.inner.size());
     }
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

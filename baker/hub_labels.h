@@ -37,12 +37,11 @@ struct HubLabels {
     std::vector<HubTreeNode> tree;
     std::vector<uint32_t> firstLeaf;     // per first-layer patch: its leaf tree node
     std::vector<uint32_t> nodeHub;       // per graph node: hub number, UINT32_MAX if none
-    float labelScale = 1.0f;             // distance per label step
+    float labelScale = 1.0f;             // distance per step, of labels and inner rows alike
     std::vector<uint64_t> labelBegin;    // H + 1 offsets into labels
     std::vector<uint16_t> labels;        // hub b: one step count per hub on its tree path
     std::vector<uint32_t> innerBegin;    // first-layer patches + 1 offsets into innerNode
     std::vector<uint32_t> innerNode;     // per first-layer patch: its active second-layer nodes, sorted
-    std::vector<float> innerScale;       // per first-layer patch: distance per inner step
     std::vector<uint64_t> innerMatrixBegin;  // first-layer patches + 1 offsets into inner
     std::vector<uint16_t> inner;         // per first-layer patch: inner node x first-layer slot
     double seconds = 0;

@@ -2,7 +2,8 @@
 # Bakes every mesh of ../shared/meshes with default parameters and measures the runtime on
 # it against the golden pairs: blob size, open time, point-to-point time and error,
 # one-to-all time, metric checks. Two table rows per mesh (the table in BENCHMARKS.md): the
-# default directed point-to-point search, then the thesis's bidirectional one.
+# directed point-to-point search, then the thesis's bidirectional one; three with
+# BAKE_OPTS=--hub-labels, the hub labels first.
 # usage: scripts/bench-runtime.sh [SHARED_DIR]   (BAKE_OPTS adds bake options, e.g. --compact)
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
@@ -17,7 +18,9 @@ for name in spot fandisk rocker-arm stanford-bunny armadillo-50k nefertiti-50k i
   f="$shared/meshes/$name.ply"
   [ -f "$f" ] || continue
   "$tool" bake "$f" -o "$out/$name.vgeo" ${BAKE_OPTS:-} --quiet
-  for search in directed bidirectional; do
+  modes="directed bidirectional"
+  case " ${BAKE_OPTS:-} " in *" --hub-labels "*) modes="labels $modes" ;; esac
+  for search in $modes; do
     "$tool" eval "$f" "$out/$name.vgeo" --golden "$shared/golden/$name.pairs.csv" --search "$search" --json > "$out/$name.json"
   python3 - "$out/$name.json" "$name" <<'PY'
 import json, sys

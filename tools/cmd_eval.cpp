@@ -19,15 +19,16 @@ namespace {
 
 const char* kUsage =
     "usage: vorogeo eval MESH BLOB [--golden PAIRS.csv | --pairs N [--seed S]] [--triples N]\n"
-    "                   [--search directed|bidirectional] [--json]\n"
+    "                   [--search labels|directed|bidirectional] [--json]\n"
     "  Accuracy of the runtime's point-to-point distance against exact geodesics: from a\n"
     "  golden 'source,target,distance' file, or from the exact engine on N random pairs\n"
     "  (default 1000, drawn from N/100 sources). Reports mean, median, p99 and max relative\n"
     "  error, the worst pairs, symmetry and triangle-inequality violations (on --triples\n"
     "  random triples, default 2000), the query time (p50, p90, p99 in microseconds) and the\n"
     "  one-to-all time (median over up to 20 sources of the pairs).\n"
-    "  --search  the point-to-point search (vg_workspace_set_search): directed A* (default)\n"
-    "            or the thesis's bidirectional A*\n";
+    "  --search  the point-to-point mode (vg_workspace_set_search): labels (default: hub\n"
+    "            labels where the blob has them, else directed), directed A*, or the\n"
+    "            thesis's bidirectional A*\n";
 
 // Random pairs, a hundred targets per source, with exact distances from the exact engine.
 std::vector<DistancePair> exactRandomPairs(const Mesh& mesh, size_t count, uint64_t seed) {

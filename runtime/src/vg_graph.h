@@ -79,12 +79,11 @@ struct vg_graph {
     const vg::HubTreeNode* hubTree;
     const uint32_t* hubFirstLeaf;       // per first-layer patch
     const uint32_t* nodeHub;            // per node: hub number or kNone
-    float hubLabelScale;
+    float hubLabelScale;                // distance per step of labels and inner rows
     const uint64_t* hubLabelBegin;      // H + 1
     const uint16_t* hubLabels;
     const uint32_t* hubInnerBegin;      // first-layer patches + 1, into hubInnerNode
     const uint32_t* hubInnerNode;
-    const float* hubInnerScale;
     const uint64_t* hubInnerMatrixBegin;  // first-layer patches + 1, into hubInner
     const uint16_t* hubInner;
 

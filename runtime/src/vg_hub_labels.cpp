@@ -164,34 +164,15 @@ const uint16_t* innerRowData(const vg_graph& g, uint32_t first, uint32_t row) {
     return g.hubInner + g.hubInnerMatrixBegin[first] + uint64_t(row) * g.first[first].slotCount;
 }
 
-// out[k] = min(out[k], base + steps[k] * scale) over k < n, skipping "no path".
-void lowerBy(float* out, const uint16_t* steps, uint32_t n, float base, float scale) {
-    for (uint32_t k = 0; k < n; ++k) {
-        const float c = steps[k] == kNoStep ? __builtin_inff() : base + float(steps[k]) * scale;
-        out[k] = c < out[k] ? c : out[k];
-    }
-}
-
-// min over k < n of d[k] + steps[k] * scale.
-float meetOver(const float* d, const uint16_t* steps, uint32_t n, float scale) {
-    float best = __builtin_inff();
-    for (uint32_t k = 0; k < n; ++k) {
-        const float c = steps[k] == kNoStep ? __builtin_inff() : d[k] + float(steps[k]) * scale;
-        best = c < best ? c : best;
-    }
-    return best;
-}
-
 // v[k]: the distance inside the side's first-layer patch from vertex x to its k-th slot
-// (a first-layer node): x's patch rows to the active nodes of its patches, then their
-// inner rows (an active node is an inner row itself).
-void innerDistances(const vg_graph& g, uint32_t x, const Side& side, float* v) {
+// (a first-layer node), in label steps: x's patch rows to the active nodes of its patches,
+// then their inner rows (an active node is an inner row itself).
+void innerSteps(const vg_graph& g, uint32_t x, const Side& side, uint16_t* v) {
     const uint32_t first = side.first, K = g.first[first].slotCount;
-    const float scale = g.hubInnerScale[first];
-    for (uint32_t k = 0; k < K; ++k) v[k] = __builtin_inff();
+    for (uint32_t k = 0; k < K; ++k) v[k] = kNoStep;
     if (side.node != kNone && nodeActive(g, side.node)) {
         const uint32_t r = innerRow(g, first, side.node);
-        if (r != kNone) lowerBy(v, innerRowData(g, first, r), K, 0.0f, scale);
+        if (r != kNone) lowerStepsOn(g, v, innerRowData(g, first, r), K, 0);
         return;
     }
     forEachPatchOf(g, x, [&](uint32_t patch, uint32_t slot) {
@@ -200,9 +181,10 @@ void innerDistances(const vg_graph& g, uint32_t x, const Side& side, float* v) {
             const uint32_t n = g.slots[p.slotBegin + j];
             if (j == slot || !nodeActive(g, n)) continue;
             const uint32_t q = quantum(g.secondDistances, entryIndex(p, slot, j));
-            if (q == kNoPathQuantum) continue;
+            const uint16_t base = q == kNoPathQuantum ? kNoStep : toSteps(float(q) * p.scale, g.hubLabelScale);
+            if (base == kNoStep) continue;
             const uint32_t r = innerRow(g, first, n);
-            if (r != kNone) lowerBy(v, innerRowData(g, first, r), K, float(q) * p.scale, scale);
+            if (r != kNone) lowerStepsOn(g, v, innerRowData(g, first, r), K, base);
         }
     });
 }
@@ -221,12 +203,12 @@ void hubDistances(const vg_graph& g, vg_workspace& ws, uint32_t x, const Side& s
         lowerStepsOn(g, d, label, n < length ? n : length, 0);
         return;
     }
-    float* v = ws.patchNodeDistance;
-    innerDistances(g, x, side, v);
+    uint16_t* v = ws.hubSlotSteps;
+    innerSteps(g, x, side, v);
     const Patch& fp = g.first[side.first];
     for (uint32_t k = 0; k < fp.slotCount; ++k) {
         const uint32_t hub = g.nodeHub[g.slots[fp.slotBegin + k]];
-        const uint16_t base = toSteps(v[k], g.hubLabelScale);
+        const uint16_t base = v[k];
         if (hub == kNone || base == kNoStep) continue;
         const uint16_t* label = labelOf(g, hub, &n);
         lowerStepsOn(g, d, label, n < length ? n : length, base);
@@ -258,25 +240,24 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
         // s's distance to each first-layer node of t's patch, then to t's patch nodes.
         const uint32_t first = b.first;
         const Patch& fp = g.first[first];
-        float* w = ws.slotLabel;
+        uint16_t* w = ws.hubSlotSteps;
         for (uint32_t k = 0; k < fp.slotCount; ++k) {
             const uint32_t hub = g.nodeHub[g.slots[fp.slotBegin + k]];
-            w[k] = __builtin_inff();
+            w[k] = kNoStep;
             if (hub == kNone) continue;
             const uint16_t* label = labelOf(g, hub, &n);
-            w[k] = distanceOf(meetStepsOn(g, dS, label, n < common ? n : common));
+            w[k] = meetStepsOn(g, dS, label, n < common ? n : common);
         }
         const uint32_t gen = beginQuery(ws);
         Frontier& F = ws.forward;
         Frontier& B = ws.backward;
         uint32_t* met = ws.patchNodeSlot;  // the nodes labelled from both sides
         uint32_t metCount = 0;
-        const float innerScale = g.hubInnerScale[first];
         auto label = [&](uint32_t u, float fromT) {
             if (!B.labelled(u)) {
                 const uint32_t r = innerRow(g, first, u);
                 if (r == kNone) return;
-                F.label[u] = Label{meetOver(w, innerRowData(g, first, r), fp.slotCount, innerScale), gen};
+                F.label[u] = Label{distanceOf(meetStepsOn(g, w, innerRowData(g, first, r), fp.slotCount)), gen};
                 B.label[u] = Label{fromT, gen};
                 if (metCount < kMaxPatchSlots) met[metCount++] = u;
             } else if (fromT < B.label[u].dist) {

@@ -138,13 +138,13 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
     out.hubMaxPath = 0;
     const uint64_t T = count(g->hub_tree());
     const bool any = T != 0 || g->hub_first_leaf() || g->node_hub() || g->hub_label_begin() || g->hub_labels() ||
-                     g->hub_inner_begin() || g->hub_inner_node() || g->hub_inner_scale() ||
+                     g->hub_inner_begin() || g->hub_inner_node() ||
                      g->hub_inner_matrix_begin() || g->hub_inner();
     if (!any) return true;
     const uint64_t N = out.nodeCount, S1 = out.firstCount;
     const uint64_t H = count(g->hub_label_begin()) == 0 ? 0 : count(g->hub_label_begin()) - 1;
     if (T == 0 || T >= kNone || H >= kNone || count(g->hub_label_begin()) == 0 || count(g->hub_first_leaf()) != S1 ||
-        count(g->node_hub()) != N || count(g->hub_inner_begin()) != S1 + 1 || count(g->hub_inner_scale()) != S1 ||
+        count(g->node_hub()) != N || count(g->hub_inner_begin()) != S1 + 1 ||
         count(g->hub_inner_matrix_begin()) != S1 + 1)
         return false;
     const float labelScale = g->hub_label_scale();
@@ -154,8 +154,7 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
     const uint64_t* matrixBegin = raw(g->hub_inner_matrix_begin());
     if (!aligned(tree) || !aligned(labelBegin) || !aligned(matrixBegin) || !aligned(raw(g->hub_labels())) ||
         !aligned(raw(g->hub_inner())) || !aligned(raw(g->node_hub())) || !aligned(raw(g->hub_first_leaf())) ||
-        !aligned(raw(g->hub_inner_begin())) || !aligned(raw(g->hub_inner_node())) ||
-        !aligned(raw(g->hub_inner_scale())))
+        !aligned(raw(g->hub_inner_begin())) || !aligned(raw(g->hub_inner_node())))
         return false;
     uint64_t nextHub = 0, maxPath = 0;
     for (uint64_t t = 0; t < T; ++t) {
@@ -179,7 +178,6 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
         if (nodeHub[n] != kNone && nodeHub[n] >= H) return false;
     const uint32_t* innerBegin = raw(g->hub_inner_begin());
     const uint32_t* innerNode = raw(g->hub_inner_node());
-    const float* innerScale = raw(g->hub_inner_scale());
     if (innerBegin[0] != 0 || innerBegin[S1] != count(g->hub_inner_node()) || matrixBegin[0] != 0 ||
         matrixBegin[S1] != count(g->hub_inner()))
         return false;
@@ -189,7 +187,6 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
             if (innerNode[i] >= N || (i > innerBegin[p] && innerNode[i] <= innerNode[i - 1])) return false;
         const uint64_t entries = uint64_t(innerBegin[p + 1] - innerBegin[p]) * out.first[p].slotCount;
         if (matrixBegin[p] > matrixBegin[p + 1] || matrixBegin[p + 1] - matrixBegin[p] != entries) return false;
-        if (!finite(innerScale[p]) || innerScale[p] < 0.0f) return false;
     }
     out.hubTreeCount = uint32_t(T);
     out.hubCount = uint32_t(H);
@@ -202,7 +199,6 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
     out.hubLabels = raw(g->hub_labels());
     out.hubInnerBegin = innerBegin;
     out.hubInnerNode = innerNode;
-    out.hubInnerScale = innerScale;
     out.hubInnerMatrixBegin = matrixBegin;
     out.hubInner = raw(g->hub_inner());
     return true;

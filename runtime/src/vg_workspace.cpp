@@ -35,6 +35,13 @@ uint64_t patchEntriesCapacity(const vg_graph& g) {
     return most + vg::kRowSlack;
 }
 
+uint64_t largestFirstPatch(const vg_graph& g) {
+    uint64_t most = 0;
+    for (uint32_t i = 0; i < g.firstCount; ++i)
+        if (g.first[i].slotCount > most) most = g.first[i].slotCount;
+    return most;
+}
+
 struct Layout {
     unsigned char* base;  // nullptr while only measuring
     size_t used = 0;
@@ -95,6 +102,7 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.pathPortals = L.take<vg::Portal>(vg::maxPortals(g.faceCount));
     o.pathApexes = L.take<vg::Apex>(vg::maxPortals(g.faceCount) + 2);
     o.hubSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? g.hubMaxPath : 0) + 16);
+    o.hubSlotSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? largestFirstPatch(g) : 0) + 16);
     o.graph = &g;
     o.generation = 0;
     o.slice = vg::FieldSlice{0, 0, 0, nullptr, nullptr, 0, nullptr, nullptr};

@@ -215,7 +215,8 @@ struct vg_workspace {
     vg::Portal* pathPortals;       // maxPortals(F): the corridor of faces it runs through
     vg::Apex* pathApexes;          // maxPortals(F) + 2: the taut path's corners
     vg::FieldSlice slice;          // the time-sliced one-to-all query, if one was started
-    uint16_t* hubSteps;            // hub labels: the source's distance to each hub of its tree path
+    uint16_t* hubSteps;            // hub labels: the source's distance to each hub of its tree path,
+    uint16_t* hubSlotSteps;        // ... and an endpoint's to each first-layer node of its patch
 };
 
 namespace vg {

@@ -7,8 +7,6 @@
 #include <limits>
 #include <mutex>
 #include <stdexcept>
-#include <cstdio>
-#include <cstdlib>
 
 #include "parallel.h"
 #include "vorogeo_distance_coding.h"
@@ -376,13 +374,6 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
     std::vector<uint32_t> subtreeEnd(T);
     for (uint32_t t = 0; t < T; ++t) subtreeEnd[t] = t + 1;
     for (uint32_t t = T; t-- > 1;) subtreeEnd[out.tree[t].parent] = std::max(subtreeEnd[out.tree[t].parent], subtreeEnd[t]);
-    if (std::getenv("VOROGEO_HUB_STATS")) {
-        std::vector<uint32_t> depth(T, 0);
-        for (uint32_t t = 1; t < T; ++t) depth[t] = depth[out.tree[t].parent] + 1;
-        for (uint32_t t = 0; t < T; ++t)
-            std::fprintf(stderr, "tree %u depth %u parent %d hubs %u path %u\n", t, depth[t], int(out.tree[t].parent),
-                         out.tree[t].hubCount, out.tree[t].pathBegin + out.tree[t].hubCount);
-    }
     auto hubEnd = [&](uint32_t t) { return subtreeEnd[t] < T ? out.tree[subtreeEnd[t]].hubBegin : H; };
     auto pathLength = [&](uint32_t t) { return out.tree[t].pathBegin + out.tree[t].hubCount; };
     out.labelBegin.assign(H + 1, 0);

@@ -10,6 +10,7 @@
 #include <tbb/global_control.h>
 
 #include "bake.h"
+#include "blob_test_helpers.h"
 #include "generators.h"
 #include "runtime_graph.h"
 #include "vg_hub_labels.h"
@@ -39,18 +40,6 @@ std::vector<uint8_t> bakeLabelled(bool compress, size_t threads = 0) {
 const std::vector<uint8_t>& labelledBlob() {
     static const std::vector<uint8_t> blob = bakeLabelled(false);
     return blob;
-}
-
-RuntimeGraph openOrFail(const std::vector<uint8_t>& blob) {
-    RuntimeGraph g;
-    std::string error;
-    REQUIRE(g.open(blob, error));
-    return g;
-}
-
-void reseal(std::vector<uint8_t>& blob) {
-    vg_store_le64(blob.data() + 32, vg_checksum64(blob.data() + VG_CONTAINER_HEADER_SIZE,
-                                                  blob.size() - VG_CONTAINER_HEADER_SIZE));
 }
 
 }  // namespace
@@ -116,7 +105,7 @@ TEST_CASE("hub labels: tables that do not add up are refused", "[hub]") {
     auto refused = [&](size_t offset, uint32_t value) {
         std::vector<uint8_t> bad(blob);
         std::memcpy(bad.data() + offset, &value, 4);
-        reseal(bad);
+        resealChecksum(bad);
         tools::AlignedBytes copy, memory;
         copy.resize(bad.size());
         std::memcpy(copy.data(), bad.data(), bad.size());

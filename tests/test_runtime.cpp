@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "bake.h"
+#include "blob_test_helpers.h"
 #include "blob_writer.h"
 #include "generators.h"
 #include "geodesic_exact.h"
@@ -42,19 +43,6 @@ std::vector<uint8_t> bakeBlob(const Mesh& mesh, bool compress = true, uint32_t n
 const std::vector<uint8_t>& bumpyBlob() {
     static const std::vector<uint8_t> blob = bakeBlob(bumpyTorus(60, 30));  // 1,800 vertices
     return blob;
-}
-
-RuntimeGraph openOrFail(const std::vector<uint8_t>& blob) {
-    RuntimeGraph g;
-    std::string error;
-    REQUIRE(g.open(blob, error));
-    return g;
-}
-
-// Recomputes the container checksum after the payload was edited on purpose.
-void resealChecksum(std::vector<uint8_t>& blob) {
-    vg_store_le64(blob.data() + 32, vg_checksum64(blob.data() + VG_CONTAINER_HEADER_SIZE,
-                                                  blob.size() - VG_CONTAINER_HEADER_SIZE));
 }
 
 // Opens a possibly corrupt blob; if accepted, runs every query kind on a few vertices.

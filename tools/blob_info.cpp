@@ -30,17 +30,19 @@ int printBlobInfo(const std::string& path, bool json) {
     std::ifstream in(path, std::ios::binary | std::ios::ate);
     const size_t fileBytes = size_t(in.tellg());
     const uint32_t V = g->vertex_count();
+    const size_t hubs = size(g->hub_label_begin()) > 0 ? size(g->hub_label_begin()) - 1 : 0;
     if (json) {
         std::printf("{\"blob\":\"%s\",\"format_version\":%u,\"compressed\":%s,\"coded_distances\":%s,\"bytes\":%zu,\"flatbuffer_bytes\":%zu,"
                     "\"bytes_per_vertex\":%.2f,\"vertices\":%u,\"nodes\":%zu,\"nodes_pruned_second\":%zu,"
                     "\"first_patches\":%zu,\"second_patches\":%zu,\"first_layer_node_slots\":%zu,"
-                    "\"seed\":%llu,\"n1\":%u,\"n2\":%u,\"delta\":%g,\"margin_rings\":%u,\"bbox_diagonal\":%g}\n",
+                    "\"seed\":%llu,\"n1\":%u,\"n2\":%u,\"delta\":%g,\"margin_rings\":%u,\"bbox_diagonal\":%g,"
+                    "\"hubs\":%zu,\"hub_label_entries\":%zu,\"hub_inner_entries\":%zu}\n",
                     path.c_str(), blob.formatVersion, blob.compressed ? "true" : "false", blob.coded ? "true" : "false",
                     fileBytes,
                     blob.flatbuffer.size(), V ? double(fileBytes) / V : 0.0, V, size(g->node_vertex()), secondPruned,
                     size(g->first_patches()), size(g->second_patches()), size(g->node_first()),
                     (unsigned long long)g->seed(), g->n1(), g->n2(), double(g->delta()), g->margin_rings(),
-                    double(g->bbox_diagonal()));
+                    double(g->bbox_diagonal()), hubs, size(g->hub_labels()), size(g->hub_inner()));
         return 0;
     }
     std::printf("%s: vorogeo blob, format version %u, %s, %zu bytes (%.1f per vertex; flatbuffer %zu bytes)\n",
@@ -55,6 +57,11 @@ int printBlobInfo(const std::string& path, bool json) {
     std::printf("  baked with      seed %llu, n1 %s, n2 %s, delta %g, margin rings %u\n", (unsigned long long)g->seed(),
                 g->n1() ? std::to_string(g->n1()).c_str() : "auto", g->n2() ? std::to_string(g->n2()).c_str() : "auto",
                 double(g->delta()), g->margin_rings());
+    if (hubs > 0)
+        std::printf("  hub labels      %zu hubs, %zu tree nodes, %zu label entries, %zu inner entries\n", hubs,
+                    size(g->hub_tree()), size(g->hub_labels()), size(g->hub_inner()));
+    else
+        std::printf("  hub labels      none (point-to-point queries search)\n");
     return 0;
 }
 

@@ -164,6 +164,21 @@ const uint16_t* innerRowData(const vg_graph& g, uint32_t first, uint32_t row) {
     return g.hubInner + g.hubInnerMatrixBegin[first] + uint64_t(row) * g.first[first].slotCount;
 }
 
+// Calls f(node, distance) for the active nodes of x's second-layer patches (not x itself)
+// with x's row entry to each, where there is a path.
+template <class F>
+void forEachRowNode(const vg_graph& g, uint32_t x, F&& f) {
+    forEachPatchOf(g, x, [&](uint32_t patch, uint32_t slot) {
+        const Patch& p = g.second[patch];
+        for (uint32_t j = 0; j < p.nodeCount; ++j) {
+            const uint32_t n = g.slots[p.slotBegin + j];
+            if (j == slot || !nodeActive(g, n)) continue;
+            const uint32_t q = quantum(g.secondDistances, entryIndex(p, slot, j));
+            if (q != kNoPathQuantum) f(n, float(q) * p.scale);
+        }
+    });
+}
+
 // v[k]: the distance inside the side's first-layer patch from vertex x to its k-th slot
 // (a first-layer node), in label steps: x's patch rows to the active nodes of its patches,
 // then their inner rows (an active node is an inner row itself).
@@ -175,17 +190,10 @@ void innerSteps(const vg_graph& g, uint32_t x, const Side& side, uint16_t* v) {
         if (r != kNone) lowerStepsOn(g, v, innerRowData(g, first, r), K, 0);
         return;
     }
-    forEachPatchOf(g, x, [&](uint32_t patch, uint32_t slot) {
-        const Patch& p = g.second[patch];
-        for (uint32_t j = 0; j < p.nodeCount; ++j) {
-            const uint32_t n = g.slots[p.slotBegin + j];
-            if (j == slot || !nodeActive(g, n)) continue;
-            const uint32_t q = quantum(g.secondDistances, entryIndex(p, slot, j));
-            const uint16_t base = q == kNoPathQuantum ? kNoStep : toSteps(float(q) * p.scale, g.hubLabelScale);
-            if (base == kNoStep) continue;
-            const uint32_t r = innerRow(g, first, n);
-            if (r != kNone) lowerStepsOn(g, v, innerRowData(g, first, r), K, base);
-        }
+    forEachRowNode(g, x, [&](uint32_t n, float d) {
+        const uint16_t base = toSteps(d, g.hubLabelScale);
+        const uint32_t r = base == kNoStep ? kNone : innerRow(g, first, n);
+        if (r != kNone) lowerStepsOn(g, v, innerRowData(g, first, r), K, base);
     });
 }
 
@@ -265,15 +273,7 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
             }
         };
         if (b.node != kNone && nodeActive(g, b.node)) label(b.node, 0.0f);
-        forEachPatchOf(g, t, [&](uint32_t patch, uint32_t slot) {
-            const Patch& p = g.second[patch];
-            for (uint32_t j = 0; j < p.nodeCount; ++j) {
-                const uint32_t u = g.slots[p.slotBegin + j];
-                if (j == slot || !nodeActive(g, u)) continue;
-                const uint32_t q = quantum(g.secondDistances, entryIndex(p, slot, j));
-                if (q != kNoPathQuantum) label(u, float(q) * p.scale);
-            }
-        });
+        forEachRowNode(g, t, label);
         // Meetings at a node, and across a mesh edge between two of them (vg_distance.cpp).
         for (uint32_t i = 0; i < metCount; ++i) {
             const uint32_t v = met[i];

@@ -1,0 +1,24 @@
+// What the runtime tests share about blobs: opening one (a failed open fails the test)
+// and resealing a blob whose payload a test edited on purpose.
+#pragma once
+
+#include <catch2/catch.hpp>
+
+#include <string>
+#include <vector>
+
+#include "runtime_graph.h"
+#include "vorogeo_container.h"
+
+inline vorogeo::tools::RuntimeGraph openOrFail(const std::vector<uint8_t>& blob) {
+    vorogeo::tools::RuntimeGraph g;
+    std::string error;
+    REQUIRE(g.open(blob, error));
+    return g;
+}
+
+// Recomputes the container checksum after the payload was edited on purpose.
+inline void resealChecksum(std::vector<uint8_t>& blob) {
+    vg_store_le64(blob.data() + 32, vg_checksum64(blob.data() + VG_CONTAINER_HEADER_SIZE,
+                                                  blob.size() - VG_CONTAINER_HEADER_SIZE));
+}

@@ -126,6 +126,8 @@ VG_API uint32_t vg_vertex_count(const vg_graph* graph);
 VG_API uint32_t vg_node_count(const vg_graph* graph);
 /* Length of the diagonal of the mesh's bounding box, the natural unit of error. */
 VG_API float vg_bbox_diagonal(const vg_graph* graph);
+/* Hub labels in the blob (bake --hub-labels): 1 if present, 0 if not (or graph is NULL). */
+VG_API int vg_has_hub_labels(const vg_graph* graph);
 
 /* ------------------------------------------------------------------ workspaces */
 

@@ -147,5 +147,6 @@ extern "C" vg_status vg_open(const void* blob, size_t blob_size, void* memory, s
 extern "C" int vg_supports_compression(void) { return VG_WITH_ZSTD ? 1 : 0; }
 
 extern "C" uint32_t vg_vertex_count(const vg_graph* graph) { return graph ? graph->vertexCount : 0; }
+extern "C" int vg_has_hub_labels(const vg_graph* graph) { return graph && graph->hubTreeCount > 0 ? 1 : 0; }
 extern "C" uint32_t vg_node_count(const vg_graph* graph) { return graph ? graph->nodeCount : 0; }
 extern "C" float vg_bbox_diagonal(const vg_graph* graph) { return graph ? graph->bboxDiagonal : 0.0f; }

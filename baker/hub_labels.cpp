@@ -6,7 +6,6 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
-#include <stdexcept>
 
 #include "parallel.h"
 #include "vorogeo_distance_coding.h"
@@ -58,7 +57,6 @@ struct Dijkstra {
         heap.clear();
     }
     double at(uint32_t v) const { return stamp[v] == generation ? dist[v] : kInf; }
-    bool settled(uint32_t v) const { return stamp[v] == generation && done[v]; }
     void offer(uint32_t v, double d, uint32_t from = kNo) {
         if (stamp[v] != generation) {
             stamp[v] = generation;
@@ -97,15 +95,15 @@ public:
     TreeBuilder(const View& v, HubLabels& out) : v_(v), out_(out) {
         const uint32_t F = v.firstCount;
         centroid_.assign(size_t(F) * 3, 0.0);
-        std::vector<uint32_t> count(F, 0);
+        patchNodes_.assign(F, {});
         for (uint32_t p = 0; p < F; ++p) {
             const fb::PatchRecord& r = v.first(p);
-            for (uint32_t k = 0; k < r.slot_count(); ++k) {
-                const uint32_t vertex = v.g->node_vertex()->Get(v.slot(r.slot_begin() + k));
+            for (uint32_t k = 0; k < r.slot_count(); ++k) patchNodes_[p].push_back(v.slot(r.slot_begin() + k));
+            for (uint32_t n : patchNodes_[p]) {
+                const uint32_t vertex = v.g->node_vertex()->Get(n);
                 for (int c = 0; c < 3; ++c) centroid_[3 * p + c] += v.g->positions()->Get(3 * vertex + c);
-                ++count[p];
             }
-            for (int c = 0; c < 3; ++c) centroid_[3 * p + c] /= std::max<uint32_t>(1, count[p]);
+            for (int c = 0; c < 3; ++c) centroid_[3 * p + c] /= double(std::max<size_t>(1, patchNodes_[p].size()));
         }
         adjacency_.assign(F, {});
         const auto* begin = v.g->node_first_begin();
@@ -152,24 +150,14 @@ public:
 private:
     // Distances from `source` over the patch adjacency inside the marked set.
     std::vector<double> distancesFrom(uint32_t source) {
-        std::vector<double> d(v_.firstCount, kInf);
-        std::vector<std::pair<double, uint32_t>> heap{{0.0, source}};
-        d[source] = 0;
-        while (!heap.empty()) {
-            std::pop_heap(heap.begin(), heap.end(), std::greater<>());
-            const auto [du, u] = heap.back();
-            heap.pop_back();
-            if (du > d[u]) continue;
-            for (uint32_t w : adjacency_[u]) {
-                if (!inSet_[w]) continue;
-                const double dw = du + centroidDistance(centroid_, u, w);
-                if (dw < d[w]) {
-                    d[w] = dw;
-                    heap.push_back({dw, w});
-                    std::push_heap(heap.begin(), heap.end(), std::greater<>());
-                }
-            }
-        }
+        Dijkstra dj;
+        dj.begin(v_.firstCount);
+        dj.offer(source, 0.0);
+        for (uint32_t u = dj.next(); u != kNo; u = dj.next())
+            for (uint32_t w : adjacency_[u])
+                if (inSet_[w]) dj.offer(w, dj.at(u) + centroidDistance(centroid_, u, w));
+        std::vector<double> d(v_.firstCount);
+        for (uint32_t p = 0; p < v_.firstCount; ++p) d[p] = dj.at(p);
         return d;
     }
 
@@ -184,12 +172,12 @@ private:
     // for every cut position in [lo, hi], by moving patches over one at a time.
     uint32_t bestCut(const std::vector<uint32_t>& order, size_t lo, size_t hi, size_t& at) {
         for (uint32_t p : order)
-            for (uint32_t n : nodesOf(p)) count_[n] = {0, 0};
+            for (uint32_t n : patchNodes_[p]) count_[n] = {0, 0};
         for (uint32_t p : order)
-            for (uint32_t n : nodesOf(p)) ++count_[n].second;
+            for (uint32_t n : patchNodes_[p]) ++count_[n].second;
         uint32_t shared = 0, best = UINT32_MAX;
         for (size_t k = 0; k < hi; ++k) {
-            for (uint32_t n : nodesOf(order[k])) {
+            for (uint32_t n : patchNodes_[order[k]]) {
                 auto& c = count_[n];
                 const bool before = c.first > 0 && c.second > 0;
                 ++c.first;
@@ -207,13 +195,6 @@ private:
             }
         }
         return best;
-    }
-
-    std::vector<uint32_t> nodesOf(uint32_t p) const {
-        const fb::PatchRecord& r = v_.first(p);
-        std::vector<uint32_t> nodes(r.slot_count());
-        for (uint32_t k = 0; k < r.slot_count(); ++k) nodes[k] = v_.slot(r.slot_begin() + k);
-        return nodes;
     }
 
     // Two halves: the smallest separator (nodes shared across) over a few sweeps through
@@ -267,6 +248,7 @@ private:
     const View& v_;
     HubLabels& out_;
     std::vector<double> centroid_;
+    std::vector<std::vector<uint32_t>> patchNodes_;  // per patch: its nodes (its slots)
     std::vector<std::vector<uint32_t>> adjacency_;
     std::vector<uint8_t> inSet_;
     std::vector<uint32_t> depth_;

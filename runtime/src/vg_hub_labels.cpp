@@ -202,25 +202,34 @@ const uint16_t* labelOf(const vg_graph& g, uint32_t hub, uint32_t* length) {
     return g.hubLabels + g.hubLabelBegin[hub];
 }
 
+// Calls f(k, label, n) for every slot k of first-layer patch `first` that is a hub: its
+// label, cut to at most `length` entries (the common part of two tree paths).
+template <class F>
+void forEachSlotLabel(const vg_graph& g, uint32_t first, uint32_t length, F&& f) {
+    const Patch& fp = g.first[first];
+    for (uint32_t k = 0; k < fp.slotCount; ++k) {
+        const uint32_t hub = g.nodeHub[g.slots[fp.slotBegin + k]];
+        if (hub == kNone) continue;
+        uint32_t n = 0;
+        const uint16_t* label = labelOf(g, hub, &n);
+        f(k, label, n < length ? n : length);
+    }
+}
+
 // d[i], i < length: the side's distance to the i-th hub of its tree path, in label steps.
 void hubDistances(const vg_graph& g, vg_workspace& ws, uint32_t x, const Side& side, uint16_t* d, uint32_t length) {
     for (uint32_t i = 0; i < length; ++i) d[i] = kNoStep;
-    uint32_t n = 0;
     if (side.hub != kNone) {
+        uint32_t n = 0;
         const uint16_t* label = labelOf(g, side.hub, &n);
         lowerStepsOn(g, d, label, n < length ? n : length, 0);
         return;
     }
-    uint16_t* v = ws.hubSlotSteps;
-    innerSteps(g, x, side, v);
-    const Patch& fp = g.first[side.first];
-    for (uint32_t k = 0; k < fp.slotCount; ++k) {
-        const uint32_t hub = g.nodeHub[g.slots[fp.slotBegin + k]];
-        const uint16_t base = v[k];
-        if (hub == kNone || base == kNoStep) continue;
-        const uint16_t* label = labelOf(g, hub, &n);
-        lowerStepsOn(g, d, label, n < length ? n : length, base);
-    }
+    const uint16_t* v = ws.hubSlotSteps;
+    innerSteps(g, x, side, ws.hubSlotSteps);
+    forEachSlotLabel(g, side.first, length, [&](uint32_t k, const uint16_t* label, uint32_t m) {
+        if (v[k] != kNoStep) lowerStepsOn(g, d, label, m, v[k]);
+    });
 }
 
 }  // namespace
@@ -249,13 +258,10 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
         const uint32_t first = b.first;
         const Patch& fp = g.first[first];
         uint16_t* w = ws.hubSlotSteps;
-        for (uint32_t k = 0; k < fp.slotCount; ++k) {
-            const uint32_t hub = g.nodeHub[g.slots[fp.slotBegin + k]];
-            w[k] = kNoStep;
-            if (hub == kNone) continue;
-            const uint16_t* label = labelOf(g, hub, &n);
-            w[k] = meetStepsOn(g, dS, label, n < common ? n : common);
-        }
+        for (uint32_t k = 0; k < fp.slotCount; ++k) w[k] = kNoStep;
+        forEachSlotLabel(g, first, common, [&](uint32_t k, const uint16_t* label, uint32_t m) {
+            w[k] = meetStepsOn(g, dS, label, m);
+        });
         const uint32_t gen = beginQuery(ws);
         Frontier& F = ws.forward;
         Frontier& B = ws.backward;

@@ -240,7 +240,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
                             bytesOf(faceTwin) + bytesOf(partition.faceSecond) + bytesOf(vertexHalfedge) +
                             bytesOf(hubs.tree) + bytesOf(hubs.firstLeaf) + bytesOf(hubs.nodeHub) +
                             bytesOf(hubs.labelBegin) + bytesOf(hubs.labels) + bytesOf(hubs.innerBegin) +
-                            bytesOf(hubs.innerNode) + bytesOf(hubs.innerMatrixBegin) + bytesOf(hubs.inner) + 4096,
+                            bytesOf(hubs.innerNode) + bytesOf(hubs.innerMatrixBegin) + bytesOf(hubs.inner) + bytesOf(hubs.blockBounds) + 4096,
                         V);
     flatbuffers::FlatBufferBuilder b(size_t(64) << 20);
     auto posV = b.CreateVector(positions);
@@ -274,6 +274,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     flatbuffers::Offset<flatbuffers::Vector<uint32_t>> hlfV, nhV, hibV, hinV;
     flatbuffers::Offset<flatbuffers::Vector<uint64_t>> hlbV, himV;
     flatbuffers::Offset<flatbuffers::Vector<uint16_t>> hlV, hiV;
+    flatbuffers::Offset<flatbuffers::Vector<float>> hbbV;
     if (withHubs) {
         htV = b.CreateVectorOfStructs(hubTree);
         hlfV = b.CreateVector(hubs.firstLeaf);
@@ -284,6 +285,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
         hinV = b.CreateVector(hubs.innerNode);
         himV = b.CreateVector(hubs.innerMatrixBegin);
         hiV = b.CreateVector(hubs.inner);
+        hbbV = b.CreateVector(hubs.blockBounds);
     }
     fb::GraphBuilder g(b);
     g.add_vertex_count(V);
@@ -328,6 +330,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
         g.add_hub_inner_node(hinV);
         g.add_hub_inner_matrix_begin(himV);
         g.add_hub_inner(hiV);
+        g.add_hub_block_bounds(hbbV);
     }
     fb::FinishGraphBuffer(b, g.Finish());
     return std::vector<uint8_t>(b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize());

@@ -83,6 +83,85 @@ struct Dijkstra {
     }
 };
 
+// Reorders one tree node's hubs (sorted by node id) into a chain along their separator:
+// from the first, always on to the nearest hub not taken yet (ties: the lower node id), so
+// that a block of consecutive hubs is a short piece of separator with small bounds.
+void chainOrder(const View& v, std::vector<std::pair<uint32_t, uint32_t>>::iterator begin,
+                std::vector<std::pair<uint32_t, uint32_t>>::iterator end) {
+    const size_t n = size_t(end - begin);
+    if (n < 3) return;
+    std::vector<double> xyz(3 * n);
+    for (size_t i = 0; i < n; ++i) {
+        const uint32_t vertex = v.g->node_vertex()->Get(begin[ptrdiff_t(i)].second);
+        for (uint32_t c = 0; c < 3; ++c) xyz[3 * i + c] = v.g->positions()->Get(3 * vertex + c);
+    }
+    std::vector<uint8_t> taken(n, 0);
+    std::vector<size_t> order{0};
+    order.reserve(n);
+    taken[0] = 1;
+    for (size_t at = 0; order.size() < n;) {
+        size_t next = n;
+        double nearest = kInf;
+        for (size_t j = 0; j < n; ++j) {
+            if (taken[j]) continue;
+            const double dx = xyz[3 * j] - xyz[3 * at], dy = xyz[3 * j + 1] - xyz[3 * at + 1],
+                         dz = xyz[3 * j + 2] - xyz[3 * at + 2];
+            const double d = dx * dx + dy * dy + dz * dz;
+            if (d < nearest) {  // strict: among equals the lower node id, which comes first
+                nearest = d;
+                next = j;
+            }
+        }
+        taken[next] = 1;
+        order.push_back(next);
+        at = next;
+    }
+    std::vector<std::pair<uint32_t, uint32_t>> chained(n);
+    for (size_t i = 0; i < n; ++i) chained[i] = begin[ptrdiff_t(order[i])];
+    std::copy(chained.begin(), chained.end(), begin);
+}
+
+// HubLabels::blockBounds. The sphere's radius and the landmark intervals are widened past
+// float rounding so that every hub of the block is inside them.
+std::vector<float> blockBounds(const View& v, const std::vector<HubTreeNode>& tree, const std::vector<uint32_t>& hubNode) {
+    const auto* landmarkScale = v.g->landmark_scale();
+    const auto* nodeLandmarks = v.g->node_landmarks();
+    const uint32_t K = landmarkScale ? landmarkScale->size() : 0;
+    std::vector<float> bounds;
+    auto position = [&](uint32_t h, uint32_t c) {
+        return double(v.g->positions()->Get(3 * v.g->node_vertex()->Get(hubNode[h]) + c));
+    };
+    for (const HubTreeNode& t : tree)
+        for (uint32_t b = 0; b < t.hubCount; b += kHubBlock) {
+            const uint32_t first = t.hubBegin + b, end = t.hubBegin + std::min(t.hubCount, b + kHubBlock);
+            double centre[3] = {0, 0, 0};
+            for (uint32_t h = first; h < end; ++h)
+                for (uint32_t c = 0; c < 3; ++c) centre[c] += position(h, c) / double(end - first);
+            float fc[3];
+            for (uint32_t c = 0; c < 3; ++c) fc[c] = float(centre[c]);
+            double radius = 0;
+            for (uint32_t h = first; h < end; ++h) {
+                double r2 = 0;
+                for (uint32_t c = 0; c < 3; ++c) r2 += (position(h, c) - double(fc[c])) * (position(h, c) - double(fc[c]));
+                radius = std::max(radius, std::sqrt(r2));
+            }
+            bounds.insert(bounds.end(), {fc[0], fc[1], fc[2], float(radius * (1.0 + 1e-5) + 1e-30)});
+            for (uint32_t k = 0; k < K; ++k) {
+                double lo = kInf, hi = -kInf;
+                for (uint32_t h = first; h < end; ++h) {
+                    const uint16_t q = nodeLandmarks->Get(hubNode[h] * K + k);
+                    const double d = q == kHubUnreachable ? kInf : double(q) * double(landmarkScale->Get(k));
+                    lo = std::min(lo, d);
+                    hi = std::max(hi, d);
+                }
+                const bool bounded = std::isfinite(hi);
+                bounds.push_back(bounded ? float(lo * (1.0 - 1e-6)) : -std::numeric_limits<float>::infinity());
+                bounds.push_back(bounded ? float(hi * (1.0 + 1e-6)) : std::numeric_limits<float>::infinity());
+            }
+        }
+    return bounds;
+}
+
 double centroidDistance(const std::vector<double>& c, uint32_t a, uint32_t b) {
     const double dx = c[3 * a] - c[3 * b], dy = c[3 * a + 1] - c[3 * b + 1], dz = c[3 * a + 2] - c[3 * b + 2];
     return std::sqrt(dx * dx + dy * dy + dz * dz);
@@ -337,6 +416,10 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
         if (t != kNo) hubs.push_back({t, n});
     }
     std::sort(hubs.begin(), hubs.end());
+    for (size_t b = 0, e = 0; b < hubs.size(); b = e) {
+        for (e = b; e < hubs.size() && hubs[e].first == hubs[b].first; ++e) {}
+        chainOrder(v, hubs.begin() + ptrdiff_t(b), hubs.begin() + ptrdiff_t(e));
+    }
     const uint32_t H = uint32_t(hubs.size());
     out.nodeHub.assign(v.nodes, kNo);
     std::vector<uint32_t> hubTree(H), hubNode(H);
@@ -356,6 +439,7 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
     std::vector<uint32_t> subtreeEnd(T);
     for (uint32_t t = 0; t < T; ++t) subtreeEnd[t] = t + 1;
     for (uint32_t t = T; t-- > 1;) subtreeEnd[out.tree[t].parent] = std::max(subtreeEnd[out.tree[t].parent], subtreeEnd[t]);
+    out.blockBounds = blockBounds(v, out.tree, hubNode);
     auto hubEnd = [&](uint32_t t) { return subtreeEnd[t] < T ? out.tree[subtreeEnd[t]].hubBegin : H; };
     auto pathLength = [&](uint32_t t) { return out.tree[t].pathBegin + out.tree[t].hubCount; };
     out.labelBegin.assign(H + 1, 0);

@@ -8,7 +8,8 @@
 // shortest path's highest hub therefore lies on the tree path of every node on it, so:
 //
 //   * label of hub b: its overlay distance to every hub on the tree path from the root to
-//     b's own tree node (concatenated in path order, so labels of one tree path align);
+//     b's own tree node (concatenated in path order, so labels of one tree path align; a
+//     tree node's hubs in a chain along its separator, bounded in blocks of 16);
 //   * inner rows of first-layer patch P: the distance inside P (over its second-layer node
 //     graph) from each of P's second-layer nodes to each of P's first-layer nodes.
 //
@@ -44,10 +45,17 @@ struct HubLabels {
     std::vector<uint32_t> innerNode;     // per first-layer patch: its active second-layer nodes, sorted
     std::vector<uint64_t> innerMatrixBegin;  // first-layer patches + 1 offsets into inner
     std::vector<uint16_t> inner;         // per first-layer patch: inner node x first-layer slot
+    // Per block of kHubBlock consecutive hubs of a tree node (tree order, a node's last block
+    // shorter): a bounding sphere (centre x, y, z, radius), then per landmark the smallest and
+    // largest distance of its hubs (-inf, +inf where one is unreachable). The runtime reads a
+    // label only over the blocks that can lie near a shortest path.
+    std::vector<float> blockBounds;
     double seconds = 0;
 };
 
 constexpr uint16_t kHubUnreachable = 65535;
+// Hubs per bounded block (HubLabels::blockBounds; vorogeo.fbs hub_block_bounds).
+constexpr uint32_t kHubBlock = 16;
 
 using HubProgress = std::function<void(double fraction)>;
 

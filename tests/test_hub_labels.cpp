@@ -1,6 +1,7 @@
 // Hub labels (bake --hub-labels, baker/hub_labels.h, runtime/src/vg_hub_labels.cpp): they
 // answer like the search on the same graph, symmetric, deterministic across thread
-// counts, and a blob whose label tables do not add up is refused.
+// counts; reading only the labels the bounds keep gives the answers of reading all; and a
+// blob whose label tables do not add up is refused.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -89,6 +90,37 @@ TEST_CASE("hub labels on a pruned graph answer like its search", "[hub]") {
     CHECK(compareWithSearch(bakeLabelled(false, 0, 0.002), 200) > 100);
 }
 
+TEST_CASE("hub labels: the pruned reads answer like reading every label", "[hub]") {
+    // The query reads only the first-layer nodes and hub blocks whose lower bounds stay
+    // within an upper bound of the answer. Skipping only removes candidates, so it never
+    // answers less than the full reads; it answers more only where an unfolded crossing
+    // next to t undercuts a skipped node's bound (kUpperSlack): rarely and by little.
+    for (const double delta : {0.0, 0.002}) {
+        const std::vector<uint8_t> blob = delta == 0.0 ? labelledBlob() : bakeLabelled(false, 0, delta);
+        RuntimeGraph g = openOrFail(blob);
+        REQUIRE(g.graph()->hubBlockBounds != nullptr);
+        RuntimeWorkspace ws(g.graph());
+        const uint32_t V = vg_vertex_count(g.graph());
+        std::mt19937 rng(11);
+        std::uniform_int_distribution<uint32_t> pick(0, V - 1);
+        size_t answered = 0, differ = 0;
+        for (int i = 0; i < 600; ++i) {
+            const uint32_t s = pick(rng), t = pick(rng);
+            float pruned = 0, full = 0;
+            const bool a = vg::hubDistance(*g.graph(), *ws.get(), s, t, __builtin_inff(), &pruned, true);
+            const bool b = vg::hubDistance(*g.graph(), *ws.get(), s, t, __builtin_inff(), &full, false);
+            REQUIRE(a == b);
+            if (!a) continue;
+            ++answered;
+            CHECK(pruned >= full);
+            CHECK(pruned <= 1.05f * full);
+            differ += pruned != full;
+        }
+        CHECK(answered > 300);
+        CHECK(differ * 50 <= answered);  // at most 2%
+    }
+}
+
 TEST_CASE("hub labels: a bounded query and the modes", "[hub]") {
     RuntimeGraph g = openOrFail(labelledBlob());
     RuntimeWorkspace ws(g.graph());
@@ -135,4 +167,11 @@ TEST_CASE("hub labels: tables that do not add up are refused", "[hub]") {
     CHECK(refused(offsetOf(g->hub_inner_node()->data()), 0xFFFFFFF0u));       // a node out of range
     CHECK(refused(offsetOf(g->hub_inner_begin()->data()) + 4, 0xFFFFFFF0u));
     CHECK(refused(offsetOf(g->hub_inner_matrix_begin()->data()) + 8, 3));    // a matrix of the wrong size
+    REQUIRE(g->hub_block_bounds() != nullptr);
+    const size_t bounds = offsetOf(g->hub_block_bounds()->data());
+    CHECK(refused(bounds - 4, g->hub_block_bounds()->size() - 1));           // a block short
+    CHECK(refused(bounds + 12, 0xBF800000u));                                // a radius of -1
+    CHECK(refused(bounds + 4, 0x7FC00000u));                                 // a NaN centre
+    if (g->landmark_scale() && g->landmark_scale()->size() > 0)
+        CHECK(refused(bounds + 16, 0x7F800000u));                            // a range from +inf (above its end)
 }

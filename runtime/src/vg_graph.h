@@ -15,6 +15,7 @@ constexpr uint32_t kNoPathQuantum = 4095;
 constexpr uint8_t kNodeMergedAway = 1;  // node_flags bit 0
 constexpr uint32_t kMaxLandmarks = 64;
 constexpr uint16_t kLandmarkUnreachable = 65535;
+constexpr uint32_t kHubBlock = 16;  // hubs per bounded block (vorogeo.fbs hub_block_bounds)
 
 // Mirrors vorogeo.fb.PatchRecord / Membership (little-endian flatbuffer structs; the
 // layout is checked against the generated code in vg_open.cpp).
@@ -86,6 +87,7 @@ struct vg_graph {
     const uint32_t* hubInnerNode;
     const uint64_t* hubInnerMatrixBegin;  // first-layer patches + 1, into hubInner
     const uint16_t* hubInner;
+    const float* hubBlockBounds;        // per block of kHubBlock hubs: sphere, landmark ranges; null: none
 
     // Set by vg_open_file only: what vg_close_file releases.
     vg_allocator fileAllocator;

@@ -1,5 +1,7 @@
 #include "vg_hub_labels.h"
 
+#include "vg_lower_bound.h"
+
 #if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
 #define VG_HUB_AVX2 1
 #include <immintrin.h>
@@ -216,25 +218,155 @@ void forEachSlotLabel(const vg_graph& g, uint32_t first, uint32_t length, F&& f)
     }
 }
 
-// d[i], i < length: the side's distance to the i-th hub of its tree path, in label steps.
-void hubDistances(const vg_graph& g, vg_workspace& ws, uint32_t x, const Side& side, uint16_t* d, uint32_t length) {
+// d[i] for the positions i of the segments: the side's distance to the i-th hub of its tree
+// path, in label steps (kNoStep elsewhere below `length`): a hub's own label, or for a
+// patch-interior side the labels of its patch's slots k with v[k] (the side's distance to
+// slot k) not kNoStep.
+void hubDistances(const vg_graph& g, const Side& side, const uint16_t* v, const HubSegment* segments,
+                  uint32_t segmentCount, uint16_t* d, uint32_t length) {
     for (uint32_t i = 0; i < length; ++i) d[i] = kNoStep;
+    auto lower = [&](const uint16_t* label, uint32_t n, uint16_t base) {
+        for (uint32_t r = 0; r < segmentCount; ++r) {
+            const uint32_t begin = segments[r].begin;
+            if (begin >= n) break;
+            const uint32_t count = n - begin < segments[r].count ? n - begin : segments[r].count;
+            lowerStepsOn(g, d + begin, label + begin, count, base);
+        }
+    };
     if (side.hub != kNone) {
         uint32_t n = 0;
         const uint16_t* label = labelOf(g, side.hub, &n);
-        lowerStepsOn(g, d, label, n < length ? n : length, 0);
+        lower(label, n < length ? n : length, 0);
         return;
     }
-    const uint16_t* v = ws.hubSlotSteps;
-    innerSteps(g, x, side, ws.hubSlotSteps);
     forEachSlotLabel(g, side.first, length, [&](uint32_t k, const uint16_t* label, uint32_t m) {
-        if (v[k] != kNoStep) lowerStepsOn(g, d, label, m, v[k]);
+        if (v[k] != kNoStep) lower(label, m, v[k]);
     });
+}
+
+// min over the positions i of the segments below n of d[i] + label[i].
+uint16_t meetSegments(const vg_graph& g, const uint16_t* d, const uint16_t* label, uint32_t n,
+                      const HubSegment* segments, uint32_t segmentCount) {
+    uint16_t best = kNoStep;
+    for (uint32_t r = 0; r < segmentCount; ++r) {
+        const uint32_t begin = segments[r].begin;
+        if (begin >= n) break;
+        const uint32_t count = n - begin < segments[r].count ? n - begin : segments[r].count;
+        const uint16_t m = meetStepsOn(g, d + begin, label + begin, count);
+        best = m < best ? m : best;
+    }
+    return best;
+}
+
+// Which first-layer nodes of an endpoint's patch a query reads. A node n of s's patch can
+// only carry a shortest path to t if d(s, n) + d(n, t) is at most the answer, and d(n, t)
+// is at least the straight line and the landmark bounds: the labels of the other nodes
+// are never read. The bounds describe the runtime's graph only up to its rounding and,
+// with an exact first layer, up to the second layer's own error (at most 1.5% on the
+// shared meshes), so they are shrunk by this factor first.
+constexpr float kBoundShrink = 0.98f;
+// The upper bound comes from node paths, and next to t an unfolded crossing may undercut a
+// node path by up to kUnfoldSlack: a node skipped by the bound could still have given the
+// best crossing. Loosening the bound by kUnfoldSlack would keep every answer of the full
+// reads at 1.4x the time on igea; this factor keeps all of 5,800 random igea pairs and
+// ~99% on a coarse 4,800-vertex torus (tests/test_hub_labels.cpp). Skipping only removes
+// candidates, so an answer that differs is the larger one (by at most a few percent).
+constexpr float kUpperSlack = 1.02f;
+
+struct EndpointBounds {
+    const float* position;
+    float landmarks[kMaxLandmarks];
+};
+
+void endpointBounds(const vg_graph& g, uint32_t x, EndpointBounds& b) {
+    b.position = g.positions + 3 * uint64_t(x);
+    landmarkDistances(g, x, b.landmarks);
+}
+
+// A lower bound of d(x, h) for the hubs h of block b (its sphere and landmark ranges).
+float blockBoundTo(const vg_graph& g, const float* block, const EndpointBounds& x) {
+    const float dx = block[0] - x.position[0], dy = block[1] - x.position[1], dz = block[2] - x.position[2];
+    float best = __builtin_sqrtf(dx * dx + dy * dy + dz * dz) - block[3];
+    for (uint32_t k = 0; k < g.landmarkCount; ++k) {
+        const float lo = block[4 + 2 * k], hi = block[5 + 2 * k], d = x.landmarks[k];
+        if (d == __builtin_inff()) continue;
+        const float below = lo - d, above = d - hi;
+        const float b = (below > above ? below : above) - 2.0f * g.landmarkScale[k];
+        if (b > best) best = b;  // an unbounded range (-inf, +inf) never is
+    }
+    return best > 0.0f ? best : 0.0f;
+}
+
+// The segments of the common tree path (down to tree node `lca`) whose hub blocks may lie on
+// a path from s to t no longer than `upper`: all of it without block bounds or without an
+// upper bound. Merged where consecutive, in path order. Returns their number.
+uint32_t pathSegments(const vg_graph& g, vg_workspace& ws, uint32_t lca, const EndpointBounds& bs,
+                      const EndpointBounds& bt, float upper) {
+    HubSegment* out = ws.hubSegments;
+    uint32_t count = 0;
+    const bool bounded = g.hubBlockBounds != nullptr && upper != __builtin_inff();
+    const uint32_t stride = 4 + 2 * g.landmarkCount;
+    // From the common node up to the root, each node's blocks last to first: decreasing
+    // positions, reversed at the end.
+    for (uint32_t x = lca; x != kNone; x = g.hubTree[x].parent) {
+        const HubTreeNode& node = g.hubTree[x];
+        const uint32_t blocks = (node.hubCount + kHubBlock - 1) / kHubBlock;
+        for (uint32_t b = blocks; b-- > 0;) {
+            const uint32_t begin = node.pathBegin + b * kHubBlock;
+            const uint32_t size = node.hubCount - b * kHubBlock < kHubBlock ? node.hubCount - b * kHubBlock : kHubBlock;
+            if (bounded) {
+                const float* block = g.hubBlockBounds + uint64_t(ws.hubBlockBegin[x] + b) * stride;
+                if ((blockBoundTo(g, block, bs) + blockBoundTo(g, block, bt)) * kBoundShrink > upper) continue;
+            }
+            if (count > 0 && out[count - 1].begin == begin + size) {
+                out[count - 1].begin = begin;
+                out[count - 1].count += size;
+            } else {
+                out[count++] = HubSegment{begin, size};
+            }
+        }
+    }
+    for (uint32_t i = 0, j = count; i + 1 < j; ++i, --j) {
+        const HubSegment x = out[i];
+        out[i] = out[j - 1];
+        out[j - 1] = x;
+    }
+    return count;
+}
+
+// cost[k]: a lower bound of the paths from the endpoint through slot k of its patch `first`
+// to the other endpoint (+inf where the slot is no hub or out of reach). Returns the slot
+// with the smallest, the likeliest exit (kNone if none).
+uint32_t exitCosts(const vg_graph& g, const vg_workspace& ws, uint32_t first, const uint16_t* v,
+                   const EndpointBounds& other, float* cost) {
+    const Patch& fp = g.first[first];
+    const uint32_t stride = 3 + g.landmarkCount;
+    const float* record = ws.hubSlotRecords + uint64_t(ws.hubSlotRecordBegin[first]) * stride;
+    uint32_t best = kNone;
+    for (uint32_t k = 0; k < fp.slotCount; ++k, record += stride) {
+        cost[k] = __builtin_inff();
+        if (v[k] == kNoStep || g.nodeHub[g.slots[fp.slotBegin + k]] == kNone) continue;
+        const float bound = withLandmarks(g, record, other.landmarks, recordDistance(record, other.position));
+        cost[k] = float(v[k]) * g.hubLabelScale + bound * kBoundShrink;
+        if (best == kNone || cost[k] < cost[best]) best = k;
+    }
+    return best;
+}
+
+// The label distance between two hubs: their labels' common part (the path down to their
+// tree nodes' common ancestor), met.
+uint16_t hubToHub(const vg_graph& g, uint32_t a, uint32_t b) {
+    const uint32_t length = pathLength(g, commonAncestor(g, treeOfHub(g, a), treeOfHub(g, b)));
+    uint32_t n = 0;
+    const uint16_t* la = labelOf(g, a, &n);
+    const uint16_t* lb = labelOf(g, b, &n);
+    return meetStepsOn(g, la, lb, length);
 }
 
 }  // namespace
 
-bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance, float* out) {
+bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance, float* out,
+                 bool prune) {
     if (g.hubTreeCount == 0 || s == t || g.vertexPatch[s] == kNone || g.vertexPatch[t] == kNone) return false;
     if (t < s) {  // one order for both directions: d(s, t) and d(t, s) are the same number
         const uint32_t x = s;
@@ -243,24 +375,62 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
     }
     Side a, b;
     if (!sideOf(g, s, a) || !sideOf(g, t, b) || shareFirstPatch(g, a, b)) return false;
-    const uint32_t common = pathLength(g, commonAncestor(g, a.tree, b.tree));
-    uint16_t* dS = ws.hubSteps;
-    hubDistances(g, ws, s, a, dS, common);
+    const uint32_t lca = commonAncestor(g, a.tree, b.tree);
+    const uint32_t common = pathLength(g, lca);
     const float scale = g.hubLabelScale;
     auto distanceOf = [&](uint16_t steps) { return steps == kNoStep ? __builtin_inff() : float(steps) * scale; };
+
+    // Each side's distance to the first-layer nodes of its patch, the likeliest exits and
+    // through them an upper bound of the answer; then only the nodes whose lower bound is
+    // within it are read.
+    EndpointBounds boundsS, boundsT;
+    endpointBounds(g, s, boundsS);
+    endpointBounds(g, t, boundsT);
+    uint16_t* vS = ws.hubSlotSteps;
+    uint16_t* vT = ws.hubTargetSlotSteps;
+    const uint32_t slotsS = a.hub == kNone ? g.first[a.first].slotCount : 0;
+    const uint32_t slotsT = b.hub == kNone ? g.first[b.first].slotCount : 0;
+    float* costS = ws.hubSlotCost;
+    float* costT = ws.hubSlotCost + slotsS;
+    uint32_t hubS = a.hub, hubT = b.hub;
+    uint16_t baseS = 0, baseT = 0;
+    if (a.hub == kNone) {
+        innerSteps(g, s, a, vS);
+        const uint32_t k = exitCosts(g, ws, a.first, vS, boundsT, costS);
+        hubS = k == kNone ? kNone : g.nodeHub[g.slots[g.first[a.first].slotBegin + k]];
+        baseS = k == kNone ? kNoStep : vS[k];
+    }
+    if (b.hub == kNone) {
+        innerSteps(g, t, b, vT);
+        const uint32_t k = exitCosts(g, ws, b.first, vT, boundsS, costT);
+        hubT = k == kNone ? kNone : g.nodeHub[g.slots[g.first[b.first].slotBegin + k]];
+        baseT = k == kNone ? kNoStep : vT[k];
+    }
+    float upper = __builtin_inff();
+    if (prune && hubS != kNone && hubT != kNone)
+        upper = kUpperSlack * distanceOf(saturatingSum(saturatingSum(baseS, baseT), hubToHub(g, hubS, hubT)));
+    for (uint32_t k = 0; k < slotsS; ++k)
+        if (costS[k] > upper) vS[k] = kNoStep;
+    for (uint32_t k = 0; k < slotsT; ++k)
+        if (costT[k] > upper) vT[k] = kNoStep;
+
+    const uint32_t segmentCount = pathSegments(g, ws, lca, boundsS, boundsT, upper);
+    const HubSegment* segments = ws.hubSegments;
+    uint16_t* dS = ws.hubSteps;
+    hubDistances(g, a, vS, segments, segmentCount, dS, common);
     float best = __builtin_inff();
     uint32_t n = 0;
     if (b.hub != kNone) {
         const uint16_t* label = labelOf(g, b.hub, &n);
-        best = distanceOf(meetStepsOn(g, dS, label, n < common ? n : common));
+        best = distanceOf(meetSegments(g, dS, label, n < common ? n : common, segments, segmentCount));
     } else {
-        // s's distance to each first-layer node of t's patch, then to t's patch nodes.
+        // s's distance to each first-layer node of t's patch that passed, then to t's patch nodes.
         const uint32_t first = b.first;
         const Patch& fp = g.first[first];
         uint16_t* w = ws.hubSlotSteps;
         for (uint32_t k = 0; k < fp.slotCount; ++k) w[k] = kNoStep;
         forEachSlotLabel(g, first, common, [&](uint32_t k, const uint16_t* label, uint32_t m) {
-            w[k] = meetStepsOn(g, dS, label, m);
+            if (vT[k] != kNoStep) w[k] = meetSegments(g, dS, label, m, segments, segmentCount);
         });
         const uint32_t gen = beginQuery(ws);
         Frontier& F = ws.forward;

@@ -14,7 +14,9 @@ namespace vg {
 
 // The distance between vertices s and t (+inf beyond maxDistance) into *out. False, with
 // *out untouched, when the blob has no labels or s and t share a first-layer patch (a
-// shortest path may stay inside it, which only the search sees).
-bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance, float* out);
+// shortest path may stay inside it, which only the search sees). `prune` false reads
+// every label of both patches (the reference the tests compare the pruned reads with).
+bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance, float* out,
+                 bool prune = true);
 
 }  // namespace vg

@@ -136,10 +136,11 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
     out.hubTreeCount = 0;
     out.hubCount = 0;
     out.hubMaxPath = 0;
+    out.hubBlockBounds = nullptr;
     const uint64_t T = count(g->hub_tree());
     const bool any = T != 0 || g->hub_first_leaf() || g->node_hub() || g->hub_label_begin() || g->hub_labels() ||
                      g->hub_inner_begin() || g->hub_inner_node() ||
-                     g->hub_inner_matrix_begin() || g->hub_inner();
+                     g->hub_inner_matrix_begin() || g->hub_inner() || g->hub_block_bounds();
     if (!any) return true;
     const uint64_t N = out.nodeCount, S1 = out.firstCount;
     const uint64_t H = count(g->hub_label_begin()) == 0 ? 0 : count(g->hub_label_begin()) - 1;
@@ -156,9 +157,10 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
         !aligned(raw(g->hub_inner())) || !aligned(raw(g->node_hub())) || !aligned(raw(g->hub_first_leaf())) ||
         !aligned(raw(g->hub_inner_begin())) || !aligned(raw(g->hub_inner_node())))
         return false;
-    uint64_t nextHub = 0, maxPath = 0;
+    uint64_t nextHub = 0, maxPath = 0, blocks = 0;
     for (uint64_t t = 0; t < T; ++t) {
         const HubTreeNode& n = tree[t];
+        blocks += (uint64_t(n.hubCount) + kHubBlock - 1) / kHubBlock;
         if (t == 0 ? n.parent != kNone : n.parent >= t) return false;
         const uint64_t parentEnd = t == 0 ? 0 : uint64_t(tree[n.parent].pathBegin) + tree[n.parent].hubCount;
         if (n.pathBegin != parentEnd || n.hubBegin != nextHub) return false;
@@ -201,6 +203,19 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
     out.hubInnerNode = innerNode;
     out.hubInnerMatrixBegin = matrixBegin;
     out.hubInner = raw(g->hub_inner());
+    // Block bounds (optional beside the labels): finite spheres, landmark ranges lo <= hi.
+    if (g->hub_block_bounds()) {
+        const float* bounds = raw(g->hub_block_bounds());
+        const uint64_t stride = 4 + 2 * uint64_t(out.landmarkCount);
+        if (count(g->hub_block_bounds()) != stride * blocks || !aligned(bounds)) return false;
+        for (uint64_t b = 0; b < blocks; ++b) {
+            const float* r = bounds + b * stride;
+            if (!finite(r[0]) || !finite(r[1]) || !finite(r[2]) || !finite(r[3]) || r[3] < 0.0f) return false;
+            for (uint64_t k = 0; k < out.landmarkCount; ++k)
+                if (!(r[4 + 2 * k] <= r[5 + 2 * k])) return false;  // also NaN
+        }
+        out.hubBlockBounds = bounds;
+    }
     return true;
 }
 

@@ -35,6 +35,12 @@ uint64_t patchEntriesCapacity(const vg_graph& g) {
     return most + vg::kRowSlack;
 }
 
+uint64_t firstSlotCount(const vg_graph& g) {
+    uint64_t n = 0;
+    for (uint32_t p = 0; p < g.firstCount; ++p) n += g.first[p].slotCount;
+    return n;
+}
+
 uint64_t largestFirstPatch(const vg_graph& g) {
     uint64_t most = 0;
     for (uint32_t i = 0; i < g.firstCount; ++i)
@@ -103,6 +109,12 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.pathApexes = L.take<vg::Apex>(vg::maxPortals(g.faceCount) + 2);
     o.hubSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? g.hubMaxPath : 0) + 16);
     o.hubSlotSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? largestFirstPatch(g) : 0) + 16);
+    o.hubTargetSlotSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? largestFirstPatch(g) : 0) + 16);
+    o.hubSlotCost = L.take<float>(2 * uint64_t(g.hubTreeCount ? largestFirstPatch(g) : 0));
+    o.hubBlockBegin = L.take<uint32_t>(uint64_t(g.hubTreeCount) + 1);
+    o.hubSlotRecordBegin = L.take<uint32_t>(g.hubTreeCount ? uint64_t(g.firstCount) + 1 : 0);
+    o.hubSlotRecords = L.take<float>(g.hubTreeCount ? firstSlotCount(g) * (3 + uint64_t(g.landmarkCount)) : 0);
+    o.hubSegments = L.take<vg::HubSegment>(g.hubTreeCount ? g.hubMaxPath / vg::kHubBlock + g.hubTreeCount : 0);
     o.graph = &g;
     o.generation = 0;
     o.slice = vg::FieldSlice{0, 0, 0, nullptr, nullptr, 0, nullptr, nullptr};
@@ -134,6 +146,29 @@ void fillNodeRecords(const vg_graph& g, float* records) {
         for (uint32_t k = 0; k < K; ++k)
             r[3 + k] = q[k] == vg::kLandmarkUnreachable ? __builtin_inff() : float(q[k]) * g.landmarkScale[k];
     }
+}
+
+// The hub blocks come per tree node in tree order; a query finds a node's first by this.
+void fillHubBlockBegin(const vg_graph& g, uint32_t* begin) {
+    if (g.hubTreeCount == 0) return;
+    begin[0] = 0;
+    for (uint32_t t = 0; t < g.hubTreeCount; ++t)
+        begin[t + 1] = begin[t] + (g.hubTree[t].hubCount + vg::kHubBlock - 1) / vg::kHubBlock;
+}
+
+// The hub-label query bounds every first-layer slot of an endpoint's patch: their node
+// records side by side per patch, so that it reads them in one run.
+void fillHubSlotRecords(const vg_graph& g, const float* nodeRecords, uint32_t* begin, float* slotRecords) {
+    const uint64_t stride = 3 + uint64_t(g.landmarkCount);
+    uint32_t next = 0;
+    for (uint32_t p = 0; p < g.firstCount; ++p) {
+        begin[p] = next;
+        for (uint32_t k = 0; k < g.first[p].slotCount; ++k, ++next) {
+            const uint32_t node = g.slots[g.first[p].slotBegin + k];
+            memcpy(slotRecords + next * stride, nodeRecords + uint64_t(node) * stride, stride * sizeof(float));
+        }
+    }
+    begin[g.firstCount] = next;
 }
 
 }  // namespace
@@ -172,6 +207,8 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
     assign(*graph, L, ws);
     clearStamps(*ws);
     fillNodeRecords(*graph, ws->nodeRecords);
+    fillHubBlockBegin(*graph, ws->hubBlockBegin);
+    if (graph->hubTreeCount) fillHubSlotRecords(*graph, ws->nodeRecords, ws->hubSlotRecordBegin, ws->hubSlotRecords);
     ws->searchMode = VG_SEARCH_HUB_LABELS;
     *out_workspace = ws;
     return VG_OK;

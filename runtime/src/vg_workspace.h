@@ -53,6 +53,12 @@ inline void heapSiftDown(HeapEntry* heap, uint32_t size, uint32_t i, HeapEntry e
     place(i, e);
 }
 
+// Hub-label queries (vg_hub_labels.cpp): positions [begin, begin + count) of the common tree
+// path, whose labels a query reads.
+struct HubSegment {
+    uint32_t begin, count;
+};
+
 // A node's label in one search direction: what every relaxation reads (kept small so
 // that more of them stay in cache) ...
 struct Label {
@@ -216,7 +222,13 @@ struct vg_workspace {
     vg::Apex* pathApexes;          // maxPortals(F) + 2: the taut path's corners
     vg::FieldSlice slice;          // the time-sliced one-to-all query, if one was started
     uint16_t* hubSteps;            // hub labels: the source's distance to each hub of its tree path,
-    uint16_t* hubSlotSteps;        // ... and an endpoint's to each first-layer node of its patch
+    uint16_t* hubSlotSteps;        // ... an endpoint's to each first-layer node of its patch,
+    uint16_t* hubTargetSlotSteps;  // ... the target's to each first-layer node of its patch,
+    float* hubSlotCost;            // ... both endpoints' lower bounds through each (2 per slot),
+    uint32_t* hubBlockBegin;       // ... per tree node its first block (T + 1, filled at init),
+    uint32_t* hubSlotRecordBegin;  // ... per first-layer patch (+ 1) its first slot record,
+    float* hubSlotRecords;         // ... per first-layer slot its node's record (both filled at init),
+    vg::HubSegment* hubSegments;   // ... and the runs of the common tree path a query reads
 };
 
 namespace vg {

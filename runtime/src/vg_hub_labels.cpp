@@ -218,6 +218,15 @@ void forEachSlotLabel(const vg_graph& g, uint32_t first, uint32_t length, F&& f)
     }
 }
 
+// Calls f(begin, count) for the part of each segment (in path order) below position n.
+template <class F>
+void forEachSegmentPart(const HubSegment* segments, uint32_t segmentCount, uint32_t n, F&& f) {
+    for (uint32_t r = 0; r < segmentCount && segments[r].begin < n; ++r) {
+        const uint32_t begin = segments[r].begin;
+        f(begin, n - begin < segments[r].count ? n - begin : segments[r].count);
+    }
+}
+
 // d[i] for the positions i of the segments: the side's distance to the i-th hub of its tree
 // path, in label steps (kNoStep elsewhere below `length`): a hub's own label, or for a
 // patch-interior side the labels of its patch's slots k with v[k] (the side's distance to
@@ -226,12 +235,9 @@ void hubDistances(const vg_graph& g, const Side& side, const uint16_t* v, const 
                   uint32_t segmentCount, uint16_t* d, uint32_t length) {
     for (uint32_t i = 0; i < length; ++i) d[i] = kNoStep;
     auto lower = [&](const uint16_t* label, uint32_t n, uint16_t base) {
-        for (uint32_t r = 0; r < segmentCount; ++r) {
-            const uint32_t begin = segments[r].begin;
-            if (begin >= n) break;
-            const uint32_t count = n - begin < segments[r].count ? n - begin : segments[r].count;
+        forEachSegmentPart(segments, segmentCount, n, [&](uint32_t begin, uint32_t count) {
             lowerStepsOn(g, d + begin, label + begin, count, base);
-        }
+        });
     };
     if (side.hub != kNone) {
         uint32_t n = 0;
@@ -248,13 +254,10 @@ void hubDistances(const vg_graph& g, const Side& side, const uint16_t* v, const 
 uint16_t meetSegments(const vg_graph& g, const uint16_t* d, const uint16_t* label, uint32_t n,
                       const HubSegment* segments, uint32_t segmentCount) {
     uint16_t best = kNoStep;
-    for (uint32_t r = 0; r < segmentCount; ++r) {
-        const uint32_t begin = segments[r].begin;
-        if (begin >= n) break;
-        const uint32_t count = n - begin < segments[r].count ? n - begin : segments[r].count;
+    forEachSegmentPart(segments, segmentCount, n, [&](uint32_t begin, uint32_t count) {
         const uint16_t m = meetStepsOn(g, d + begin, label + begin, count);
         best = m < best ? m : best;
-    }
+    });
     return best;
 }
 

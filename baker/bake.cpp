@@ -139,9 +139,9 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
         const HubLabels hubs = computeHubLabels(buffer, [&](double f) {
             if (progress) progress("hub labels", f);
         });
-        report.hubs = hubs.labelBegin.empty() ? 0 : hubs.labelBegin.size() - 1;
+        report.hubs = hubs.hubCount;
         report.hubTreeNodes = hubs.tree.size();
-        report.hubLabelEntries = hubs.labels.size();
+        report.hubLabelEntries = hubs.columns.size();
         report.hubInnerEntries = hubs.inner.size();
         buffer = buildGraphBuffer(mesh, partition, geodesics.first, geodesics.second, secondInactive, params,
                                   landmarks, report.quantisationMaxAbs, hubs);

@@ -239,7 +239,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
                             bytesOf(secondDist.bytes) + bytesOf(firstDist.bytes) + bytesOf(faceVertices) +
                             bytesOf(faceTwin) + bytesOf(partition.faceSecond) + bytesOf(vertexHalfedge) +
                             bytesOf(hubs.tree) + bytesOf(hubs.firstLeaf) + bytesOf(hubs.nodeHub) +
-                            bytesOf(hubs.labelBegin) + bytesOf(hubs.labels) + bytesOf(hubs.innerBegin) +
+                            bytesOf(hubs.columnBegin) + bytesOf(hubs.columns) + bytesOf(hubs.innerBegin) +
                             bytesOf(hubs.innerNode) + bytesOf(hubs.innerMatrixBegin) + bytesOf(hubs.inner) + bytesOf(hubs.blockBounds) + 4096,
                         V);
     flatbuffers::FlatBufferBuilder b(size_t(64) << 20);
@@ -279,8 +279,10 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
         htV = b.CreateVectorOfStructs(hubTree);
         hlfV = b.CreateVector(hubs.firstLeaf);
         nhV = b.CreateVector(hubs.nodeHub);
-        hlbV = b.CreateVector(hubs.labelBegin);
-        hlV = b.CreateVector(hubs.labels);
+        hlbV = b.CreateVector(hubs.columnBegin);
+        // 32-byte rows that never straddle a cache line (vg_open places the buffer 64-aligned).
+        b.ForceVectorAlignment(hubs.columns.size(), sizeof(uint16_t), 32);
+        hlV = b.CreateVector(hubs.columns);
         hibV = b.CreateVector(hubs.innerBegin);
         hinV = b.CreateVector(hubs.innerNode);
         himV = b.CreateVector(hubs.innerMatrixBegin);
@@ -324,8 +326,8 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
         g.add_hub_first_leaf(hlfV);
         g.add_node_hub(nhV);
         g.add_hub_label_scale(hubs.labelScale);
-        g.add_hub_label_begin(hlbV);
-        g.add_hub_labels(hlV);
+        g.add_hub_column_begin(hlbV);
+        g.add_hub_columns(hlV);
         g.add_hub_inner_begin(hibV);
         g.add_hub_inner_node(hinV);
         g.add_hub_inner_matrix_begin(himV);

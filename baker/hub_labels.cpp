@@ -441,9 +441,12 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
     for (uint32_t t = T; t-- > 1;) subtreeEnd[out.tree[t].parent] = std::max(subtreeEnd[out.tree[t].parent], subtreeEnd[t]);
     out.blockBounds = blockBounds(v, out.tree, hubNode);
     auto hubEnd = [&](uint32_t t) { return subtreeEnd[t] < T ? out.tree[subtreeEnd[t]].hubBegin : H; };
-    auto pathLength = [&](uint32_t t) { return out.tree[t].pathBegin + out.tree[t].hubCount; };
-    out.labelBegin.assign(H + 1, 0);
-    for (uint32_t h = 0; h < H; ++h) out.labelBegin[h + 1] = out.labelBegin[h] + pathLength(hubTree[h]);
+    out.hubCount = H;
+    out.columnBegin.assign(T + 1, 0);
+    for (uint32_t t = 0; t < T; ++t) {
+        const uint64_t blocks = (out.tree[t].hubCount + kHubBlock - 1) / kHubBlock;
+        out.columnBegin[t + 1] = out.columnBegin[t] + blocks * kHubBlock * (hubEnd(t) - out.tree[t].hubBegin);
+    }
 
     // Inner rows, a first-layer patch per job.
     std::vector<std::vector<uint32_t>> children(v.firstCount), innerNodes(v.firstCount);
@@ -493,13 +496,16 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
 
     // Labels: one overlay Dijkstra per hub x, stopped once every hub whose label holds x
     // (the hubs of x's subtree) is settled.
-    std::vector<double> labelValue(out.labelBegin[H], kInf);
+    std::vector<double> labelValue(out.columnBegin[T], kInf);
     PerThread<Dijkstra> scratch;
     parallelFor(H, [&](size_t x) {
         Dijkstra& dj = scratch.local();
         const uint32_t t = hubTree[x];
-        const uint32_t position = out.tree[t].pathBegin + (uint32_t(x) - out.tree[t].hubBegin);
         const uint32_t targetsBegin = out.tree[t].hubBegin, targetsEnd = hubEnd(t);
+        // x's column: lane x % 16 of its block's matrix, one row per hub of the subtree.
+        const uint32_t local = uint32_t(x) - targetsBegin;
+        const uint64_t column = out.columnBegin[t] + uint64_t(local / kHubBlock) * kHubBlock * (targetsEnd - targetsBegin) +
+                                local % kHubBlock;
         uint32_t remaining = targetsEnd - targetsBegin;
         dj.begin(v.nodes);
         dj.offer(hubNode[x], 0.0);
@@ -513,7 +519,8 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
             for (uint64_t e = edgeBegin[u]; e < edgeBegin[u + 1]; ++e)
                 if (edgeLength[e] < kInf && edgePatch[e] != from) dj.offer(edgeTo[e], du + edgeLength[e], edgePatch[e]);
         }
-        for (uint32_t b = targetsBegin; b < targetsEnd; ++b) labelValue[out.labelBegin[b] + position] = dj.at(hubNode[b]);
+        for (uint32_t b = targetsBegin; b < targetsEnd; ++b)
+            labelValue[column + uint64_t(b - targetsBegin) * kHubBlock] = dj.at(hubNode[b]);
         tick();
     });
 
@@ -526,8 +533,8 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
         for (double d : values)
             if (std::isfinite(d)) largest = std::max(largest, d);
     out.labelScale = largest > 0 ? float(largest / kLargestLabelStep) : 1.0f;
-    out.labels.resize(labelValue.size());
-    for (size_t k = 0; k < labelValue.size(); ++k) out.labels[k] = steps(labelValue[k], out.labelScale);
+    out.columns.resize(labelValue.size());
+    for (size_t k = 0; k < labelValue.size(); ++k) out.columns[k] = steps(labelValue[k], out.labelScale);
     out.innerBegin.assign(1, 0);
     out.innerMatrixBegin.assign(1, 0);
     for (uint32_t f = 0; f < v.firstCount; ++f) {

@@ -8,8 +8,9 @@
 // shortest path's highest hub therefore lies on the tree path of every node on it, so:
 //
 //   * label of hub b: its overlay distance to every hub on the tree path from the root to
-//     b's own tree node (concatenated in path order, so labels of one tree path align; a
-//     tree node's hubs in a chain along its separator, bounded in blocks of 16);
+//     b's own tree node (a tree node's hubs in a chain along its separator, in blocks of
+//     16, each block stored as one matrix over the hubs of the node's subtree, so that
+//     neighbouring hubs' entries lie together);
 //   * inner rows of first-layer patch P: the distance inside P (over its second-layer node
 //     graph) from each of P's second-layer nodes to each of P's first-layer nodes.
 //
@@ -39,8 +40,12 @@ struct HubLabels {
     std::vector<uint32_t> firstLeaf;     // per first-layer patch: its leaf tree node
     std::vector<uint32_t> nodeHub;       // per graph node: hub number, UINT32_MAX if none
     float labelScale = 1.0f;             // distance per step, of labels and inner rows alike
-    std::vector<uint64_t> labelBegin;    // H + 1 offsets into labels
-    std::vector<uint16_t> labels;        // hub b: one step count per hub on its tree path
+    uint32_t hubCount = 0;
+    // The labels by tree node (vorogeo.fbs hub_columns): per block of kHubBlock hubs of tree
+    // node t, the steps from every hub of t's subtree to each of the block's hubs (a padded
+    // block's missing hubs: kHubUnreachable), kHubBlock entries per subtree hub.
+    std::vector<uint64_t> columnBegin;   // tree nodes + 1 offsets into columns
+    std::vector<uint16_t> columns;
     std::vector<uint32_t> innerBegin;    // first-layer patches + 1 offsets into innerNode
     std::vector<uint32_t> innerNode;     // per first-layer patch: its active second-layer nodes, sorted
     std::vector<uint64_t> innerMatrixBegin;  // first-layer patches + 1 offsets into inner

@@ -1,4 +1,4 @@
-/* The vorogeo blob container (format version 6), shared by the baker and the runtime.
+/* The vorogeo blob container (format version 7), shared by the baker and the runtime.
  *
  *   offset  size  field
  *        0     8  magic "VOROGEO\0"
@@ -21,7 +21,7 @@
 
 #define VG_CONTAINER_MAGIC "VOROGEO"
 #define VG_CONTAINER_HEADER_SIZE 40u
-#define VG_FORMAT_VERSION 6u
+#define VG_FORMAT_VERSION 7u
 #define VG_FLAG_ZSTD 1u
 #define VG_FLAG_CODED_DISTANCES 2u
 

@@ -158,12 +158,14 @@ TEST_CASE("hub labels: tables that do not add up are refused", "[hub]") {
         const vg_graph* graph = nullptr;
         return vg_open(copy.data(), bad.size(), memory.data(), need, &graph) == VG_ERR_CORRUPT_CONTENT;
     };
-    const uint32_t H = g->hub_label_begin()->size() - 1;
+    uint32_t H = 0;
+    for (const auto* t : *g->hub_tree()) H += t->hub_count();
     CHECK(refused(offsetOf(g->node_hub()->data()), H));                      // a hub out of range
     CHECK(refused(offsetOf(g->hub_tree()->Get(1)), 7));                      // a parent after its child
     CHECK(refused(offsetOf(g->hub_tree()->Get(1)) + 12, 0xFFFFu));           // a wrong path position
     CHECK(refused(offsetOf(g->hub_first_leaf()->data()), uint32_t(g->hub_tree()->size())));
-    CHECK(refused(offsetOf(g->hub_label_begin()->data()) + 8, 0xFFFFFFFFu));  // a label past the end
+    CHECK(refused(offsetOf(g->hub_column_begin()->data()) + 8, 0xFFFFFFFFu));  // a column matrix past the end
+    CHECK(refused(offsetOf(g->hub_column_begin()->data()) + 8, uint32_t(g->hub_column_begin()->Get(1) + 16)));  // one row too many
     CHECK(refused(offsetOf(g->hub_inner_node()->data()), 0xFFFFFFF0u));       // a node out of range
     CHECK(refused(offsetOf(g->hub_inner_begin()->data()) + 4, 0xFFFFFFF0u));
     CHECK(refused(offsetOf(g->hub_inner_matrix_begin()->data()) + 8, 3));    // a matrix of the wrong size

@@ -30,7 +30,9 @@ int printBlobInfo(const std::string& path, bool json) {
     std::ifstream in(path, std::ios::binary | std::ios::ate);
     const size_t fileBytes = size_t(in.tellg());
     const uint32_t V = g->vertex_count();
-    const size_t hubs = size(g->hub_label_begin()) > 0 ? size(g->hub_label_begin()) - 1 : 0;
+    size_t hubs = 0;
+    if (g->hub_tree())
+        for (const auto* t : *g->hub_tree()) hubs += t->hub_count();
     if (json) {
         std::printf("{\"blob\":\"%s\",\"format_version\":%u,\"compressed\":%s,\"coded_distances\":%s,\"bytes\":%zu,\"flatbuffer_bytes\":%zu,"
                     "\"bytes_per_vertex\":%.2f,\"vertices\":%u,\"nodes\":%zu,\"nodes_pruned_second\":%zu,"
@@ -42,7 +44,7 @@ int printBlobInfo(const std::string& path, bool json) {
                     blob.flatbuffer.size(), V ? double(fileBytes) / V : 0.0, V, size(g->node_vertex()), secondPruned,
                     size(g->first_patches()), size(g->second_patches()), size(g->node_first()),
                     (unsigned long long)g->seed(), g->n1(), g->n2(), double(g->delta()), g->margin_rings(),
-                    double(g->bbox_diagonal()), hubs, size(g->hub_labels()), size(g->hub_inner()));
+                    double(g->bbox_diagonal()), hubs, size(g->hub_columns()), size(g->hub_inner()));
         return 0;
     }
     std::printf("%s: vorogeo blob, format version %u, %s, %zu bytes (%.1f per vertex; flatbuffer %zu bytes)\n",
@@ -58,8 +60,8 @@ int printBlobInfo(const std::string& path, bool json) {
                 g->n1() ? std::to_string(g->n1()).c_str() : "auto", g->n2() ? std::to_string(g->n2()).c_str() : "auto",
                 double(g->delta()), g->margin_rings());
     if (hubs > 0)
-        std::printf("  hub labels      %zu hubs, %zu tree nodes, %zu label entries, %zu inner entries\n", hubs,
-                    size(g->hub_tree()), size(g->hub_labels()), size(g->hub_inner()));
+        std::printf("  hub labels      %zu hubs, %zu tree nodes, %zu label entries (blocks padded to 16), %zu inner entries\n", hubs,
+                    size(g->hub_tree()), size(g->hub_columns()), size(g->hub_inner()));
     else
         std::printf("  hub labels      none (point-to-point queries search)\n");
     return 0;

@@ -35,6 +35,13 @@ struct Membership {
 struct HubTreeNode {  // vorogeo.fb.HubTreeNode (bake --hub-labels)
     uint32_t parent, hubBegin, hubCount, pathBegin;
 };
+// End of the hubs of tree node t's subtree, [hubBegin, end) (of T nodes and H hubs): in
+// preorder the subtree ends at the first later node whose parent comes before t.
+inline uint32_t hubSubtreeEnd(const HubTreeNode* tree, uint32_t T, uint32_t H, uint32_t t) {
+    for (uint32_t u = t + 1; u < T; ++u)
+        if (tree[u].parent < t || tree[u].parent == 0xFFFFFFFFu) return tree[u].hubBegin;
+    return H;
+}
 struct PatchEdge {  // a mesh edge between two node slots of one second-layer patch
     uint16_t from, to;
     float length;
@@ -81,8 +88,8 @@ struct vg_graph {
     const uint32_t* hubFirstLeaf;       // per first-layer patch
     const uint32_t* nodeHub;            // per node: hub number or kNone
     float hubLabelScale;                // distance per step of labels and inner rows
-    const uint64_t* hubLabelBegin;      // H + 1
-    const uint16_t* hubLabels;
+    const uint64_t* hubColumnBegin;     // tree nodes + 1, into hubColumns
+    const uint16_t* hubColumns;         // per tree node and block: kHubBlock entries per subtree hub
     const uint32_t* hubInnerBegin;      // first-layer patches + 1, into hubInnerNode
     const uint32_t* hubInnerNode;
     const uint64_t* hubInnerMatrixBegin;  // first-layer patches + 1, into hubInner

@@ -94,8 +94,6 @@ struct Side {
     uint32_t tree;   // its tree node: the hub's, or the leaf of its patch
 };
 
-uint32_t pathLength(const vg_graph& g, uint32_t t) { return g.hubTree[t].pathBegin + g.hubTree[t].hubCount; }
-
 // The tree node holding hub h: the last with hubBegin <= h (the ranges tile the hubs in
 // tree order, so a later node begins after h).
 uint32_t treeOfHub(const vg_graph& g, uint32_t h) {
@@ -199,66 +197,125 @@ void innerSteps(const vg_graph& g, uint32_t x, const Side& side, uint16_t* v) {
     });
 }
 
-const uint16_t* labelOf(const vg_graph& g, uint32_t hub, uint32_t* length) {
-    *length = uint32_t(g.hubLabelBegin[hub + 1] - g.hubLabelBegin[hub]);
-    return g.hubLabels + g.hubLabelBegin[hub];
-}
-
-// Calls f(k, label, n) for every slot k of first-layer patch `first` that is a hub: its
-// label, cut to at most `length` entries (the common part of two tree paths).
-template <class F>
-void forEachSlotLabel(const vg_graph& g, uint32_t first, uint32_t length, F&& f) {
-    const Patch& fp = g.first[first];
-    for (uint32_t k = 0; k < fp.slotCount; ++k) {
-        const uint32_t hub = g.nodeHub[g.slots[fp.slotBegin + k]];
-        if (hub == kNone) continue;
-        uint32_t n = 0;
-        const uint16_t* label = labelOf(g, hub, &n);
-        f(k, label, n < length ? n : length);
-    }
-}
-
-// Calls f(begin, count) for the part of each segment (in path order) below position n.
-template <class F>
-void forEachSegmentPart(const HubSegment* segments, uint32_t segmentCount, uint32_t n, F&& f) {
-    for (uint32_t r = 0; r < segmentCount && segments[r].begin < n; ++r) {
-        const uint32_t begin = segments[r].begin;
-        f(begin, n - begin < segments[r].count ? n - begin : segments[r].count);
-    }
-}
-
-// d[i] for the positions i of the segments: the side's distance to the i-th hub of its tree
-// path, in label steps (kNoStep elsewhere below `length`): a hub's own label, or for a
-// patch-interior side the labels of its patch's slots k with v[k] (the side's distance to
-// slot k) not kNoStep.
-void hubDistances(const vg_graph& g, const Side& side, const uint16_t* v, const HubSegment* segments,
-                  uint32_t segmentCount, uint16_t* d, uint32_t length) {
-    for (uint32_t i = 0; i < length; ++i) d[i] = kNoStep;
-    auto lower = [&](const uint16_t* label, uint32_t n, uint16_t base) {
-        forEachSegmentPart(segments, segmentCount, n, [&](uint32_t begin, uint32_t count) {
-            lowerStepsOn(g, d + begin, label + begin, count, base);
-        });
-    };
-    if (side.hub != kNone) {
-        uint32_t n = 0;
-        const uint16_t* label = labelOf(g, side.hub, &n);
-        lower(label, n < length ? n : length, 0);
-        return;
-    }
-    forEachSlotLabel(g, side.first, length, [&](uint32_t k, const uint16_t* label, uint32_t m) {
-        if (v[k] != kNoStep) lower(label, m, v[k]);
-    });
-}
-
-// min over the positions i of the segments below n of d[i] + label[i].
-uint16_t meetSegments(const vg_graph& g, const uint16_t* d, const uint16_t* label, uint32_t n,
-                      const HubSegment* segments, uint32_t segmentCount) {
+uint16_t lanesMinimum(const uint16_t* lanes) {
     uint16_t best = kNoStep;
-    forEachSegmentPart(segments, segmentCount, n, [&](uint32_t begin, uint32_t count) {
-        const uint16_t m = meetStepsOn(g, d + begin, label + begin, count);
-        best = m < best ? m : best;
-    });
+    for (uint32_t j = 0; j < kHubBlock; ++j) best = lanes[j] < best ? lanes[j] : best;
     return best;
+}
+
+// The label kernels over column blocks (16 lanes: one block's hubs). Each block r of the
+// common path has one row per hub of its tree node's subtree; an exit e's row is
+// columns + r.base + (e.hub - r.lo) * kHubBlock, for r.lo <= e.hub < r.hi.
+inline bool inBlock(const HubBlockRef& r, uint32_t hub) { return hub >= r.lo && hub < r.hi; }
+inline const uint16_t* columnRow(const vg_graph& g, const HubBlockRef& r, uint32_t hub) {
+    return g.hubColumns + r.base + uint64_t(hub - r.lo) * kHubBlock;
+}
+
+// d[16 i + j]: the source's distance to hub j of block i, the best over its exits (the
+// exit's steps plus its row).
+void sourceColumns(const vg_graph& g, const HubExit* exits, uint32_t exitCount, const HubBlockRef* blocks,
+                   uint32_t blockCount, uint16_t* d) {
+    for (uint32_t i = 0; i < blockCount; ++i) {
+        uint16_t* acc = d + uint64_t(i) * kHubBlock;
+        for (uint32_t j = 0; j < kHubBlock; ++j) acc[j] = kNoStep;
+        for (uint32_t e = 0; e < exitCount; ++e)
+            if (inBlock(blocks[i], exits[e].hub)) lowerSteps(acc, columnRow(g, blocks[i], exits[e].hub), kHubBlock, exits[e].steps);
+    }
+}
+
+// acc[16 e + j]: the source's distance through hub j of some block to target exit e, the
+// best over the blocks (its lanes' minimum is the source's distance to the exit).
+void targetColumns(const vg_graph& g, const uint16_t* d, const HubExit* exits, uint32_t exitCount,
+                   const HubBlockRef* blocks, uint32_t blockCount, uint16_t* acc) {
+    for (uint64_t k = 0; k < uint64_t(exitCount) * kHubBlock; ++k) acc[k] = kNoStep;
+    for (uint32_t i = 0; i < blockCount; ++i) {
+        const uint16_t* di = d + uint64_t(i) * kHubBlock;
+        for (uint32_t e = 0; e < exitCount; ++e) {
+            if (!inBlock(blocks[i], exits[e].hub)) continue;
+            const uint16_t* row = columnRow(g, blocks[i], exits[e].hub);
+            uint16_t* a = acc + uint64_t(e) * kHubBlock;
+            for (uint32_t j = 0; j < kHubBlock; ++j) {
+                const uint16_t c = saturatingSum(di[j], row[j]);
+                a[j] = c < a[j] ? c : a[j];
+            }
+        }
+    }
+}
+
+#if VG_HUB_AVX2
+VG_AVX2_TARGET void sourceColumnsAvx2(const vg_graph& g, const HubExit* exits, uint32_t exitCount,
+                                      const HubBlockRef* blocks, uint32_t blockCount, uint16_t* d) {
+    for (uint32_t i = 0; i < blockCount; ++i) {
+        const HubBlockRef r = blocks[i];
+        if (i + 1 < blockCount)  // the next block's rows load while this one adds
+            for (uint32_t e = 0; e < exitCount; ++e)
+                if (inBlock(blocks[i + 1], exits[e].hub)) _mm_prefetch(reinterpret_cast<const char*>(columnRow(g, blocks[i + 1], exits[e].hub)), _MM_HINT_T0);
+        __m256i acc = _mm256_set1_epi16(-1);
+        for (uint32_t e = 0; e < exitCount; ++e) {
+            if (!inBlock(r, exits[e].hub)) continue;
+            const __m256i row = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(columnRow(g, r, exits[e].hub)));
+            acc = _mm256_min_epu16(acc, _mm256_adds_epu16(row, _mm256_set1_epi16(short(exits[e].steps))));
+        }
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + uint64_t(i) * kHubBlock), acc);
+    }
+}
+
+VG_AVX2_TARGET void targetColumnsAvx2(const vg_graph& g, const uint16_t* d, const HubExit* exits, uint32_t exitCount,
+                                      const HubBlockRef* blocks, uint32_t blockCount, uint16_t* acc) {
+    const __m256i none = _mm256_set1_epi16(-1);
+    for (uint32_t e = 0; e < exitCount; ++e) _mm256_storeu_si256(reinterpret_cast<__m256i*>(acc + uint64_t(e) * kHubBlock), none);
+    for (uint32_t i = 0; i < blockCount; ++i) {
+        const HubBlockRef r = blocks[i];
+        const __m256i di = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(d + uint64_t(i) * kHubBlock));
+        if (_mm256_movemask_epi8(_mm256_cmpeq_epi16(di, none)) == -1) continue;  // no hub of it reached
+        if (i + 1 < blockCount)
+            for (uint32_t e = 0; e < exitCount; ++e)
+                if (inBlock(blocks[i + 1], exits[e].hub)) _mm_prefetch(reinterpret_cast<const char*>(columnRow(g, blocks[i + 1], exits[e].hub)), _MM_HINT_T0);
+        for (uint32_t e = 0; e < exitCount; ++e) {
+            if (!inBlock(r, exits[e].hub)) continue;
+            const __m256i row = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(columnRow(g, r, exits[e].hub)));
+            __m256i* a = reinterpret_cast<__m256i*>(acc + uint64_t(e) * kHubBlock);
+            _mm256_storeu_si256(a, _mm256_min_epu16(_mm256_loadu_si256(a), _mm256_adds_epu16(row, di)));
+        }
+    }
+}
+#endif
+
+void sourceColumnsOn(const vg_graph& g, const HubExit* exits, uint32_t exitCount, const HubBlockRef* blocks,
+                     uint32_t blockCount, uint16_t* d) {
+#if VG_HUB_AVX2
+    if (g.avx2) return sourceColumnsAvx2(g, exits, exitCount, blocks, blockCount, d);
+#endif
+    sourceColumns(g, exits, exitCount, blocks, blockCount, d);
+}
+
+void targetColumnsOn(const vg_graph& g, const uint16_t* d, const HubExit* exits, uint32_t exitCount,
+                     const HubBlockRef* blocks, uint32_t blockCount, uint16_t* acc) {
+#if VG_HUB_AVX2
+    if (g.avx2) return targetColumnsAvx2(g, d, exits, exitCount, blocks, blockCount, acc);
+#endif
+    targetColumns(g, d, exits, exitCount, blocks, blockCount, acc);
+}
+
+// The exits of a side: a hub itself, or the slots of its first-layer patch that are hubs,
+// reached (v[k], the side's distance to slot k, not kNoStep) and with a lower bound
+// (cost, per exit candidate) within `upper`; in hub order, so that a block's rows are read
+// forward. Returns their number.
+uint32_t sideExits(const vg_graph& g, const vg_workspace& ws, const Side& side, const uint16_t* v, const float* cost,
+                   float upper, HubExit* exits) {
+    if (side.hub != kNone) {
+        exits[0] = HubExit{side.hub, 0, 0};
+        return 1;
+    }
+    const uint32_t begin = ws.hubSlotRecordBegin[side.first], end = ws.hubSlotRecordBegin[side.first + 1];
+    const uint32_t slotBegin = g.first[side.first].slotBegin;
+    uint32_t n = 0;
+    for (uint32_t c = begin; c < end; ++c) {
+        const uint32_t k = ws.hubSlotOrder[c];
+        if (v[k] != kNoStep && !(cost[c - begin] > upper))
+            exits[n++] = HubExit{g.nodeHub[g.slots[slotBegin + k]], k, v[k]};
+    }
+    return n;
 }
 
 // Which first-layer nodes of an endpoint's patch a query reads. A node n of s's patch can
@@ -300,70 +357,78 @@ float blockBoundTo(const vg_graph& g, const float* block, const EndpointBounds& 
     return best > 0.0f ? best : 0.0f;
 }
 
-// The segments of the common tree path (down to tree node `lca`) whose hub blocks may lie on
-// a path from s to t no longer than `upper`: all of it without block bounds or without an
-// upper bound. Merged where consecutive, in path order. Returns their number.
-uint32_t pathSegments(const vg_graph& g, vg_workspace& ws, uint32_t lca, const EndpointBounds& bs,
-                      const EndpointBounds& bt, float upper) {
-    HubSegment* out = ws.hubSegments;
+// The blocks of the common tree path (down to tree node `lca`) whose hubs may lie on a path
+// from s to t no longer than `upper`: all of them without block bounds or without an upper
+// bound. Returns their number.
+uint32_t pathBlocks(const vg_graph& g, vg_workspace& ws, uint32_t lca, const EndpointBounds& bs,
+                    const EndpointBounds& bt, float upper) {
+    HubBlockRef* out = ws.hubBlocks;
     uint32_t count = 0;
     const bool bounded = g.hubBlockBounds != nullptr && upper != __builtin_inff();
     const uint32_t stride = 4 + 2 * g.landmarkCount;
-    // From the common node up to the root, each node's blocks last to first: decreasing
-    // positions, reversed at the end.
+    // From the common node up to the root, each node's blocks last to first, reversed at the
+    // end: the matrices are then read in the order they lie in.
     for (uint32_t x = lca; x != kNone; x = g.hubTree[x].parent) {
         const HubTreeNode& node = g.hubTree[x];
         const uint32_t blocks = (node.hubCount + kHubBlock - 1) / kHubBlock;
+        const uint32_t lo = node.hubBegin, hi = ws.hubSubtreeEnd[x];
         for (uint32_t b = blocks; b-- > 0;) {
-            const uint32_t begin = node.pathBegin + b * kHubBlock;
-            const uint32_t size = node.hubCount - b * kHubBlock < kHubBlock ? node.hubCount - b * kHubBlock : kHubBlock;
             if (bounded) {
                 const float* block = g.hubBlockBounds + uint64_t(ws.hubBlockBegin[x] + b) * stride;
                 if ((blockBoundTo(g, block, bs) + blockBoundTo(g, block, bt)) * kBoundShrink > upper) continue;
             }
-            if (count > 0 && out[count - 1].begin == begin + size) {
-                out[count - 1].begin = begin;
-                out[count - 1].count += size;
-            } else {
-                out[count++] = HubSegment{begin, size};
-            }
+            out[count++] = HubBlockRef{g.hubColumnBegin[x] + uint64_t(b) * kHubBlock * (hi - lo), lo, hi};
         }
     }
     for (uint32_t i = 0, j = count; i + 1 < j; ++i, --j) {
-        const HubSegment x = out[i];
+        const HubBlockRef r = out[i];
         out[i] = out[j - 1];
-        out[j - 1] = x;
+        out[j - 1] = r;
     }
     return count;
 }
 
-// cost[k]: a lower bound of the paths from the endpoint through slot k of its patch `first`
-// to the other endpoint (+inf where the slot is no hub or out of reach). Returns the slot
-// with the smallest, the likeliest exit (kNone if none).
+// cost[c]: a lower bound of the paths from the endpoint through its patch's c-th exit
+// candidate (a slot that is a hub, in hub order) to the other endpoint; +inf where the
+// endpoint does not reach it. Returns the slot of the smallest, the likeliest exit (kNone
+// if none).
 uint32_t exitCosts(const vg_graph& g, const vg_workspace& ws, uint32_t first, const uint16_t* v,
                    const EndpointBounds& other, float* cost) {
-    const Patch& fp = g.first[first];
     const uint32_t stride = 3 + g.landmarkCount;
-    const float* record = ws.hubSlotRecords + uint64_t(ws.hubSlotRecordBegin[first]) * stride;
+    const uint32_t begin = ws.hubSlotRecordBegin[first], end = ws.hubSlotRecordBegin[first + 1];
+    const float* record = ws.hubSlotRecords + uint64_t(begin) * stride;
     uint32_t best = kNone;
-    for (uint32_t k = 0; k < fp.slotCount; ++k, record += stride) {
-        cost[k] = __builtin_inff();
-        if (v[k] == kNoStep || g.nodeHub[g.slots[fp.slotBegin + k]] == kNone) continue;
+    float bestCost = __builtin_inff();
+    for (uint32_t c = begin; c < end; ++c, record += stride) {
+        const uint32_t k = ws.hubSlotOrder[c];
+        float& out = cost[c - begin];
+        out = __builtin_inff();
+        if (v[k] == kNoStep) continue;
         const float bound = withLandmarks(g, record, other.landmarks, recordDistance(record, other.position));
-        cost[k] = float(v[k]) * g.hubLabelScale + bound * kBoundShrink;
-        if (best == kNone || cost[k] < cost[best]) best = k;
+        out = float(v[k]) * g.hubLabelScale + bound * kBoundShrink;
+        if (best == kNone || out < bestCost) {
+            best = k;
+            bestCost = out;
+        }
     }
     return best;
 }
 
-// The label distance between two hubs: their labels' common part (the path down to their
-// tree nodes' common ancestor), met.
-uint16_t hubToHub(const vg_graph& g, uint32_t a, uint32_t b) {
-    const uint32_t length = pathLength(g, commonAncestor(g, treeOfHub(g, a), treeOfHub(g, b)));
-    uint32_t n = 0;
-    const uint16_t* la = labelOf(g, a, &n);
-    const uint16_t* lb = labelOf(g, b, &n);
-    return meetStepsOn(g, la, lb, length);
+// The label distance between two hubs: their rows in every block of the path down to their
+// tree nodes' common ancestor, met.
+uint16_t hubToHub(const vg_graph& g, const vg_workspace& ws, uint32_t a, uint32_t b) {
+    uint16_t best = kNoStep;
+    for (uint32_t x = commonAncestor(g, treeOfHub(g, a), treeOfHub(g, b)); x != kNone; x = g.hubTree[x].parent) {
+        const HubTreeNode& node = g.hubTree[x];
+        const uint32_t blocks = (node.hubCount + kHubBlock - 1) / kHubBlock;
+        const uint64_t rows = ws.hubSubtreeEnd[x] - node.hubBegin;
+        for (uint32_t k = 0; k < blocks; ++k) {
+            const HubBlockRef r{g.hubColumnBegin[x] + uint64_t(k) * kHubBlock * rows, node.hubBegin, ws.hubSubtreeEnd[x]};
+            const uint16_t m = meetStepsOn(g, columnRow(g, r, a), columnRow(g, r, b), kHubBlock);
+            best = m < best ? m : best;
+        }
+    }
+    return best;
 }
 
 }  // namespace
@@ -379,7 +444,6 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
     Side a, b;
     if (!sideOf(g, s, a) || !sideOf(g, t, b) || shareFirstPatch(g, a, b)) return false;
     const uint32_t lca = commonAncestor(g, a.tree, b.tree);
-    const uint32_t common = pathLength(g, lca);
     const float scale = g.hubLabelScale;
     auto distanceOf = [&](uint16_t steps) { return steps == kNoStep ? __builtin_inff() : float(steps) * scale; };
 
@@ -392,7 +456,6 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
     uint16_t* vS = ws.hubSlotSteps;
     uint16_t* vT = ws.hubTargetSlotSteps;
     const uint32_t slotsS = a.hub == kNone ? g.first[a.first].slotCount : 0;
-    const uint32_t slotsT = b.hub == kNone ? g.first[b.first].slotCount : 0;
     float* costS = ws.hubSlotCost;
     float* costT = ws.hubSlotCost + slotsS;
     uint32_t hubS = a.hub, hubT = b.hub;
@@ -411,30 +474,27 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
     }
     float upper = __builtin_inff();
     if (prune && hubS != kNone && hubT != kNone)
-        upper = kUpperSlack * distanceOf(saturatingSum(saturatingSum(baseS, baseT), hubToHub(g, hubS, hubT)));
-    for (uint32_t k = 0; k < slotsS; ++k)
-        if (costS[k] > upper) vS[k] = kNoStep;
-    for (uint32_t k = 0; k < slotsT; ++k)
-        if (costT[k] > upper) vT[k] = kNoStep;
+        upper = kUpperSlack * distanceOf(saturatingSum(saturatingSum(baseS, baseT), hubToHub(g, ws, hubS, hubT)));
 
-    const uint32_t segmentCount = pathSegments(g, ws, lca, boundsS, boundsT, upper);
-    const HubSegment* segments = ws.hubSegments;
+    const uint32_t blockCount = pathBlocks(g, ws, lca, boundsS, boundsT, upper);
+    const HubBlockRef* blocks = ws.hubBlocks;
     uint16_t* dS = ws.hubSteps;
-    hubDistances(g, a, vS, segments, segmentCount, dS, common);
+    HubExit* exitsS = ws.hubExits;
+    HubExit* exitsT = ws.hubExits + (slotsS > 0 ? slotsS : 1);
+    sourceColumnsOn(g, exitsS, sideExits(g, ws, a, vS, costS, upper, exitsS), blocks, blockCount, dS);
+    const uint32_t exitCountT = sideExits(g, ws, b, vT, costT, upper, exitsT);
+    uint16_t* acc = ws.hubExitSteps;
+    targetColumnsOn(g, dS, exitsT, exitCountT, blocks, blockCount, acc);
     float best = __builtin_inff();
-    uint32_t n = 0;
     if (b.hub != kNone) {
-        const uint16_t* label = labelOf(g, b.hub, &n);
-        best = distanceOf(meetSegments(g, dS, label, n < common ? n : common, segments, segmentCount));
+        best = distanceOf(exitCountT == 0 ? kNoStep : lanesMinimum(acc));
     } else {
         // s's distance to each first-layer node of t's patch that passed, then to t's patch nodes.
         const uint32_t first = b.first;
         const Patch& fp = g.first[first];
         uint16_t* w = ws.hubSlotSteps;
         for (uint32_t k = 0; k < fp.slotCount; ++k) w[k] = kNoStep;
-        forEachSlotLabel(g, first, common, [&](uint32_t k, const uint16_t* label, uint32_t m) {
-            if (vT[k] != kNoStep) w[k] = meetSegments(g, dS, label, m, segments, segmentCount);
-        });
+        for (uint32_t e = 0; e < exitCountT; ++e) w[exitsT[e].slot] = lanesMinimum(acc + uint64_t(e) * kHubBlock);
         const uint32_t gen = beginQuery(ws);
         Frontier& F = ws.forward;
         Frontier& B = ws.backward;

@@ -26,7 +26,7 @@ struct Header {
     uint64_t checksum;
 };
 
-constexpr size_t kAlign = 16;
+constexpr size_t kAlign = 64;  // a cache line: the hub-label rows are 32-byte aligned in the buffer
 // flatbuffers offsets are 32-bit: a larger buffer cannot be a valid flatbuffer.
 constexpr uint64_t kMaxFlatbuffer = 0x7FFFFFFFull;
 

@@ -129,31 +129,31 @@ bool facesValid(const vg_graph& g) {
 }
 
 // Hub labels (optional, all or none): a tree in preorder whose hub ranges tile [0, H) and
-// whose path positions add up; each hub's label exactly as long as its tree path; inner
-// rows whose nodes are increasing node ids and whose matrices are as large as their
-// patches say. The query reads within these bounds whatever the numbers are.
+// whose path positions add up; per tree node a column matrix exactly as large as its blocks
+// and its subtree's hubs say; inner rows whose nodes are increasing node ids and whose
+// matrices are as large as their patches say. The query reads within these bounds whatever
+// the numbers are.
 bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
     out.hubTreeCount = 0;
     out.hubCount = 0;
     out.hubMaxPath = 0;
     out.hubBlockBounds = nullptr;
     const uint64_t T = count(g->hub_tree());
-    const bool any = T != 0 || g->hub_first_leaf() || g->node_hub() || g->hub_label_begin() || g->hub_labels() ||
+    const bool any = T != 0 || g->hub_first_leaf() || g->node_hub() || g->hub_column_begin() || g->hub_columns() ||
                      g->hub_inner_begin() || g->hub_inner_node() ||
                      g->hub_inner_matrix_begin() || g->hub_inner() || g->hub_block_bounds();
     if (!any) return true;
     const uint64_t N = out.nodeCount, S1 = out.firstCount;
-    const uint64_t H = count(g->hub_label_begin()) == 0 ? 0 : count(g->hub_label_begin()) - 1;
-    if (T == 0 || T >= kNone || H >= kNone || count(g->hub_label_begin()) == 0 || count(g->hub_first_leaf()) != S1 ||
+    if (T == 0 || T >= kNone || count(g->hub_column_begin()) != T + 1 || count(g->hub_first_leaf()) != S1 ||
         count(g->node_hub()) != N || count(g->hub_inner_begin()) != S1 + 1 ||
         count(g->hub_inner_matrix_begin()) != S1 + 1)
         return false;
     const float labelScale = g->hub_label_scale();
     if (!finite(labelScale) || labelScale < 0.0f) return false;
     const HubTreeNode* tree = rawStructs<HubTreeNode>(g->hub_tree());
-    const uint64_t* labelBegin = raw(g->hub_label_begin());
+    const uint64_t* columnBegin = raw(g->hub_column_begin());
     const uint64_t* matrixBegin = raw(g->hub_inner_matrix_begin());
-    if (!aligned(tree) || !aligned(labelBegin) || !aligned(matrixBegin) || !aligned(raw(g->hub_labels())) ||
+    if (!aligned(tree) || !aligned(columnBegin) || !aligned(matrixBegin) || !aligned(raw(g->hub_columns())) ||
         !aligned(raw(g->hub_inner())) || !aligned(raw(g->node_hub())) || !aligned(raw(g->hub_first_leaf())) ||
         !aligned(raw(g->hub_inner_begin())) || !aligned(raw(g->hub_inner_node())))
         return false;
@@ -162,16 +162,25 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
         const HubTreeNode& n = tree[t];
         blocks += (uint64_t(n.hubCount) + kHubBlock - 1) / kHubBlock;
         if (t == 0 ? n.parent != kNone : n.parent >= t) return false;
+        if (t > 0) {  // preorder: the parent is the previous node or one of its ancestors
+            uint32_t a = uint32_t(t - 1);
+            while (a != kNone && a != n.parent) a = tree[a].parent;
+            if (a == kNone) return false;
+        }
         const uint64_t parentEnd = t == 0 ? 0 : uint64_t(tree[n.parent].pathBegin) + tree[n.parent].hubCount;
         if (n.pathBegin != parentEnd || n.hubBegin != nextHub) return false;
         nextHub += n.hubCount;
         const uint64_t path = uint64_t(n.pathBegin) + n.hubCount;
-        if (nextHub > H || path > 65536u) return false;
+        if (nextHub >= kNone || path > 65536u) return false;
         if (path > maxPath) maxPath = path;
-        for (uint64_t h = n.hubBegin; h < nextHub; ++h)  // each label: the whole tree path
-            if (labelBegin[h] > labelBegin[h + 1] || labelBegin[h + 1] - labelBegin[h] != path) return false;
     }
-    if (nextHub != H || labelBegin[0] != 0 || labelBegin[H] != count(g->hub_labels())) return false;
+    const uint64_t H = nextHub;
+    if (columnBegin[0] != 0 || columnBegin[T] != count(g->hub_columns())) return false;
+    for (uint32_t t = 0; t < T; ++t) {  // each block: one row of kHubBlock entries per subtree hub
+        const uint64_t rows = uint64_t(hubSubtreeEnd(tree, uint32_t(T), uint32_t(H), t)) - tree[t].hubBegin;
+        const uint64_t entries = (uint64_t(tree[t].hubCount) + kHubBlock - 1) / kHubBlock * kHubBlock * rows;
+        if (columnBegin[t] > columnBegin[t + 1] || columnBegin[t + 1] - columnBegin[t] != entries) return false;
+    }
     const uint32_t* leaf = raw(g->hub_first_leaf());
     for (uint64_t p = 0; p < S1; ++p)
         if (leaf[p] >= T || out.first[p].slotCount > 65536u) return false;
@@ -197,8 +206,8 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
     out.hubFirstLeaf = leaf;
     out.nodeHub = nodeHub;
     out.hubLabelScale = labelScale;
-    out.hubLabelBegin = labelBegin;
-    out.hubLabels = raw(g->hub_labels());
+    out.hubColumnBegin = columnBegin;
+    out.hubColumns = raw(g->hub_columns());
     out.hubInnerBegin = innerBegin;
     out.hubInnerNode = innerNode;
     out.hubInnerMatrixBegin = matrixBegin;

@@ -107,14 +107,20 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.pathTaut = L.take<vg_path_point>(vg::maxRawPathPoints(g.faceCount));
     o.pathPortals = L.take<vg::Portal>(vg::maxPortals(g.faceCount));
     o.pathApexes = L.take<vg::Apex>(vg::maxPortals(g.faceCount) + 2);
-    o.hubSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? g.hubMaxPath : 0) + 16);
+    const uint64_t pathBlocks = g.hubTreeCount ? g.hubMaxPath / vg::kHubBlock + g.hubTreeCount : 0;
+    const uint64_t patchSlots = g.hubTreeCount ? largestFirstPatch(g) : 0;
+    o.hubSteps = L.take<uint16_t>(pathBlocks * vg::kHubBlock);
+    o.hubExitSteps = L.take<uint16_t>((patchSlots + 1) * vg::kHubBlock);
+    o.hubExits = L.take<vg::HubExit>(2 * (patchSlots + 1));
+    o.hubSubtreeEnd = L.take<uint32_t>(g.hubTreeCount);
     o.hubSlotSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? largestFirstPatch(g) : 0) + 16);
     o.hubTargetSlotSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? largestFirstPatch(g) : 0) + 16);
     o.hubSlotCost = L.take<float>(2 * uint64_t(g.hubTreeCount ? largestFirstPatch(g) : 0));
     o.hubBlockBegin = L.take<uint32_t>(uint64_t(g.hubTreeCount) + 1);
     o.hubSlotRecordBegin = L.take<uint32_t>(g.hubTreeCount ? uint64_t(g.firstCount) + 1 : 0);
+    o.hubSlotOrder = L.take<uint32_t>(g.hubTreeCount ? firstSlotCount(g) : 0);
     o.hubSlotRecords = L.take<float>(g.hubTreeCount ? firstSlotCount(g) * (3 + uint64_t(g.landmarkCount)) : 0);
-    o.hubSegments = L.take<vg::HubSegment>(g.hubTreeCount ? g.hubMaxPath / vg::kHubBlock + g.hubTreeCount : 0);
+    o.hubBlocks = L.take<vg::HubBlockRef>(pathBlocks);
     o.graph = &g;
     o.generation = 0;
     o.slice = vg::FieldSlice{0, 0, 0, nullptr, nullptr, 0, nullptr, nullptr};
@@ -156,16 +162,26 @@ void fillHubBlockBegin(const vg_graph& g, uint32_t* begin) {
         begin[t + 1] = begin[t] + (g.hubTree[t].hubCount + vg::kHubBlock - 1) / vg::kHubBlock;
 }
 
-// The hub-label query bounds every first-layer slot of an endpoint's patch: their node
-// records side by side per patch, so that it reads them in one run.
-void fillHubSlotRecords(const vg_graph& g, const float* nodeRecords, uint32_t* begin, float* slotRecords) {
+// The hub-label query bounds every first-layer slot of an endpoint's patch that is a hub
+// (its exits): per patch their slot numbers in hub order, so that the label rows are read
+// forward, and their node records side by side, so that the bounds are one run.
+void fillHubSlotRecords(const vg_graph& g, const float* nodeRecords, uint32_t* begin, uint32_t* order,
+                        float* slotRecords) {
     const uint64_t stride = 3 + uint64_t(g.landmarkCount);
     uint32_t next = 0;
+    auto hubOf = [&](uint32_t p, uint32_t k) { return g.nodeHub[g.slots[g.first[p].slotBegin + k]]; };
     for (uint32_t p = 0; p < g.firstCount; ++p) {
         begin[p] = next;
-        for (uint32_t k = 0; k < g.first[p].slotCount; ++k, ++next) {
-            const uint32_t node = g.slots[g.first[p].slotBegin + k];
-            memcpy(slotRecords + next * stride, nodeRecords + uint64_t(node) * stride, stride * sizeof(float));
+        for (uint32_t k = 0; k < g.first[p].slotCount; ++k) {
+            const uint32_t hub = hubOf(p, k);
+            if (hub == vg::kNone) continue;
+            uint32_t i = next++;  // insertion: the slots come in node order, mostly in hub order too
+            for (; i > begin[p] && hubOf(p, order[i - 1]) > hub; --i) order[i] = order[i - 1];
+            order[i] = k;
+        }
+        for (uint32_t i = begin[p]; i < next; ++i) {
+            const uint32_t node = g.slots[g.first[p].slotBegin + order[i]];
+            memcpy(slotRecords + i * stride, nodeRecords + uint64_t(node) * stride, stride * sizeof(float));
         }
     }
     begin[g.firstCount] = next;
@@ -208,7 +224,10 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
     clearStamps(*ws);
     fillNodeRecords(*graph, ws->nodeRecords);
     fillHubBlockBegin(*graph, ws->hubBlockBegin);
-    if (graph->hubTreeCount) fillHubSlotRecords(*graph, ws->nodeRecords, ws->hubSlotRecordBegin, ws->hubSlotRecords);
+    for (uint32_t t = 0; t < graph->hubTreeCount; ++t)
+        ws->hubSubtreeEnd[t] = vg::hubSubtreeEnd(graph->hubTree, graph->hubTreeCount, graph->hubCount, t);
+    if (graph->hubTreeCount)
+        fillHubSlotRecords(*graph, ws->nodeRecords, ws->hubSlotRecordBegin, ws->hubSlotOrder, ws->hubSlotRecords);
     ws->searchMode = VG_SEARCH_HUB_LABELS;
     *out_workspace = ws;
     return VG_OK;

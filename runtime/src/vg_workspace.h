@@ -53,10 +53,18 @@ inline void heapSiftDown(HeapEntry* heap, uint32_t size, uint32_t i, HeapEntry e
     place(i, e);
 }
 
-// Hub-label queries (vg_hub_labels.cpp): positions [begin, begin + count) of the common tree
-// path, whose labels a query reads.
-struct HubSegment {
-    uint32_t begin, count;
+// Hub-label queries (vg_hub_labels.cpp): a block of kHubBlock hubs of the common tree path
+// that a query reads, as the start of its column matrix in hubColumns and the hubs
+// [lo, hi) of its tree node's subtree (the matrix's rows, kHubBlock entries each).
+struct HubBlockRef {
+    uint64_t base;
+    uint32_t lo, hi;
+};
+// A first-layer node through which a query endpoint enters the labels: its hub, its slot
+// in the endpoint's first-layer patch, and the endpoint's distance to it in label steps.
+struct HubExit {
+    uint32_t hub, slot;
+    uint16_t steps;
 };
 
 // A node's label in one search direction: what every relaxation reads (kept small so
@@ -221,14 +229,18 @@ struct vg_workspace {
     vg::Portal* pathPortals;       // maxPortals(F): the corridor of faces it runs through
     vg::Apex* pathApexes;          // maxPortals(F) + 2: the taut path's corners
     vg::FieldSlice slice;          // the time-sliced one-to-all query, if one was started
-    uint16_t* hubSteps;            // hub labels: the source's distance to each hub of its tree path,
+    uint16_t* hubSteps;            // hub labels: the source's distance to the hubs of each block read,
+    uint16_t* hubExitSteps;        // ... the source's distance through each target exit, per block lane,
+    vg::HubExit* hubExits;         // ... both endpoints' exits (a patch's slots each, hub order),
+    uint32_t* hubSubtreeEnd;       // ... per tree node the end of its subtree's hubs (filled at init),
     uint16_t* hubSlotSteps;        // ... an endpoint's to each first-layer node of its patch,
     uint16_t* hubTargetSlotSteps;  // ... the target's to each first-layer node of its patch,
     float* hubSlotCost;            // ... both endpoints' lower bounds through each (2 per slot),
     uint32_t* hubBlockBegin;       // ... per tree node its first block (T + 1, filled at init),
-    uint32_t* hubSlotRecordBegin;  // ... per first-layer patch (+ 1) its first slot record,
-    float* hubSlotRecords;         // ... per first-layer slot its node's record (both filled at init),
-    vg::HubSegment* hubSegments;   // ... and the runs of the common tree path a query reads
+    uint32_t* hubSlotRecordBegin;  // ... per first-layer patch (+ 1) its first exit candidate,
+    uint32_t* hubSlotOrder;        // ... per patch its slots that are hubs, in hub order,
+    float* hubSlotRecords;         // ... and their nodes' records (all three filled at init),
+    vg::HubBlockRef* hubBlocks;    // ... and the blocks of the common tree path a query reads
 };
 
 namespace vg {

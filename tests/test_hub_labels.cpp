@@ -121,6 +121,31 @@ TEST_CASE("hub labels: the pruned reads answer like reading every label", "[hub]
     }
 }
 
+TEST_CASE("hub labels: the portable and AVX2 label kernels give the same answers", "[hub]") {
+    RuntimeGraph g = openOrFail(labelledBlob());
+    if (!g.graph()->avx2) WARN("this CPU has no AVX2: only the portable kernels run");
+    vg_graph portable = *g.graph();  // the same tables, the portable kernels
+    portable.avx2 = false;
+    RuntimeWorkspace ws(g.graph());
+    const uint32_t V = vg_vertex_count(g.graph());
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<uint32_t> pick(0, V - 1);
+    size_t answered = 0;
+    for (int i = 0; i < 400; ++i) {
+        const uint32_t s = pick(rng), t = pick(rng);
+        for (const bool prune : {true, false}) {
+            float fast = -1, plain = -2;
+            const bool a = vg::hubDistance(*g.graph(), *ws.get(), s, t, __builtin_inff(), &fast, prune);
+            const bool b = vg::hubDistance(portable, *ws.get(), s, t, __builtin_inff(), &plain, prune);
+            REQUIRE(a == b);
+            if (!a) continue;
+            ++answered;
+            CHECK(fast == plain);
+        }
+    }
+    CHECK(answered > 200);
+}
+
 TEST_CASE("hub labels: a bounded query and the modes", "[hub]") {
     RuntimeGraph g = openOrFail(labelledBlob());
     RuntimeWorkspace ws(g.graph());

@@ -39,7 +39,7 @@ struct HubTreeNode {  // vorogeo.fb.HubTreeNode (bake --hub-labels)
 // preorder the subtree ends at the first later node whose parent comes before t.
 inline uint32_t hubSubtreeEnd(const HubTreeNode* tree, uint32_t T, uint32_t H, uint32_t t) {
     for (uint32_t u = t + 1; u < T; ++u)
-        if (tree[u].parent < t || tree[u].parent == 0xFFFFFFFFu) return tree[u].hubBegin;
+        if (tree[u].parent < t) return tree[u].hubBegin;
     return H;
 }
 struct PatchEdge {  // a mesh edge between two node slots of one second-layer patch

@@ -210,6 +210,12 @@ inline bool inBlock(const HubBlockRef& r, uint32_t hub) { return hub >= r.lo && 
 inline const uint16_t* columnRow(const vg_graph& g, const HubBlockRef& r, uint32_t hub) {
     return g.hubColumns + r.base + uint64_t(hub - r.lo) * kHubBlock;
 }
+uint32_t blocksOf(const HubTreeNode& node) { return (node.hubCount + kHubBlock - 1) / kHubBlock; }
+// Block b of tree node x: its matrix has a row per hub of x's subtree.
+HubBlockRef blockRef(const vg_graph& g, const vg_workspace& ws, uint32_t x, uint32_t b) {
+    const uint32_t lo = g.hubTree[x].hubBegin, hi = ws.hubSubtreeEnd[x];
+    return HubBlockRef{g.hubColumnBegin[x] + uint64_t(b) * kHubBlock * (hi - lo), lo, hi};
+}
 
 // d[16 i + j]: the source's distance to hub j of block i, the best over its exits (the
 // exit's steps plus its row).
@@ -243,13 +249,16 @@ void targetColumns(const vg_graph& g, const uint16_t* d, const HubExit* exits, u
 }
 
 #if VG_HUB_AVX2
+void prefetchRows(const vg_graph& g, const HubBlockRef& r, const HubExit* exits, uint32_t exitCount) {
+    for (uint32_t e = 0; e < exitCount; ++e)
+        if (inBlock(r, exits[e].hub)) _mm_prefetch(reinterpret_cast<const char*>(columnRow(g, r, exits[e].hub)), _MM_HINT_T0);
+}
+
 VG_AVX2_TARGET void sourceColumnsAvx2(const vg_graph& g, const HubExit* exits, uint32_t exitCount,
                                       const HubBlockRef* blocks, uint32_t blockCount, uint16_t* d) {
     for (uint32_t i = 0; i < blockCount; ++i) {
         const HubBlockRef r = blocks[i];
-        if (i + 1 < blockCount)  // the next block's rows load while this one adds
-            for (uint32_t e = 0; e < exitCount; ++e)
-                if (inBlock(blocks[i + 1], exits[e].hub)) _mm_prefetch(reinterpret_cast<const char*>(columnRow(g, blocks[i + 1], exits[e].hub)), _MM_HINT_T0);
+        if (i + 1 < blockCount) prefetchRows(g, blocks[i + 1], exits, exitCount);  // loads while this block adds
         __m256i acc = _mm256_set1_epi16(-1);
         for (uint32_t e = 0; e < exitCount; ++e) {
             if (!inBlock(r, exits[e].hub)) continue;
@@ -268,9 +277,7 @@ VG_AVX2_TARGET void targetColumnsAvx2(const vg_graph& g, const uint16_t* d, cons
         const HubBlockRef r = blocks[i];
         const __m256i di = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(d + uint64_t(i) * kHubBlock));
         if (_mm256_movemask_epi8(_mm256_cmpeq_epi16(di, none)) == -1) continue;  // no hub of it reached
-        if (i + 1 < blockCount)
-            for (uint32_t e = 0; e < exitCount; ++e)
-                if (inBlock(blocks[i + 1], exits[e].hub)) _mm_prefetch(reinterpret_cast<const char*>(columnRow(g, blocks[i + 1], exits[e].hub)), _MM_HINT_T0);
+        if (i + 1 < blockCount) prefetchRows(g, blocks[i + 1], exits, exitCount);
         for (uint32_t e = 0; e < exitCount; ++e) {
             if (!inBlock(r, exits[e].hub)) continue;
             const __m256i row = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(columnRow(g, r, exits[e].hub)));
@@ -369,15 +376,12 @@ uint32_t pathBlocks(const vg_graph& g, vg_workspace& ws, uint32_t lca, const End
     // From the common node up to the root, each node's blocks last to first, reversed at the
     // end: the matrices are then read in the order they lie in.
     for (uint32_t x = lca; x != kNone; x = g.hubTree[x].parent) {
-        const HubTreeNode& node = g.hubTree[x];
-        const uint32_t blocks = (node.hubCount + kHubBlock - 1) / kHubBlock;
-        const uint32_t lo = node.hubBegin, hi = ws.hubSubtreeEnd[x];
-        for (uint32_t b = blocks; b-- > 0;) {
+        for (uint32_t b = blocksOf(g.hubTree[x]); b-- > 0;) {
             if (bounded) {
                 const float* block = g.hubBlockBounds + uint64_t(ws.hubBlockBegin[x] + b) * stride;
                 if ((blockBoundTo(g, block, bs) + blockBoundTo(g, block, bt)) * kBoundShrink > upper) continue;
             }
-            out[count++] = HubBlockRef{g.hubColumnBegin[x] + uint64_t(b) * kHubBlock * (hi - lo), lo, hi};
+            out[count++] = blockRef(g, ws, x, b);
         }
     }
     for (uint32_t i = 0, j = count; i + 1 < j; ++i, --j) {
@@ -419,11 +423,8 @@ uint32_t exitCosts(const vg_graph& g, const vg_workspace& ws, uint32_t first, co
 uint16_t hubToHub(const vg_graph& g, const vg_workspace& ws, uint32_t a, uint32_t b) {
     uint16_t best = kNoStep;
     for (uint32_t x = commonAncestor(g, treeOfHub(g, a), treeOfHub(g, b)); x != kNone; x = g.hubTree[x].parent) {
-        const HubTreeNode& node = g.hubTree[x];
-        const uint32_t blocks = (node.hubCount + kHubBlock - 1) / kHubBlock;
-        const uint64_t rows = ws.hubSubtreeEnd[x] - node.hubBegin;
-        for (uint32_t k = 0; k < blocks; ++k) {
-            const HubBlockRef r{g.hubColumnBegin[x] + uint64_t(k) * kHubBlock * rows, node.hubBegin, ws.hubSubtreeEnd[x]};
+        for (uint32_t k = 0; k < blocksOf(g.hubTree[x]); ++k) {
+            const HubBlockRef r = blockRef(g, ws, x, k);
             const uint16_t m = meetStepsOn(g, columnRow(g, r, a), columnRow(g, r, b), kHubBlock);
             best = m < best ? m : best;
         }

@@ -319,7 +319,7 @@ uint32_t sideExits(const vg_graph& g, const vg_workspace& ws, const Side& side, 
     uint32_t n = 0;
     for (uint32_t c = begin; c < end; ++c) {
         const uint32_t k = ws.hubSlotOrder[c];
-        if (v[k] != kNoStep && !(cost[c - begin] > upper))
+        if (k != kNone && v[k] != kNoStep && !(cost[c - begin] > upper))
             exits[n++] = HubExit{g.nodeHub[g.slots[slotBegin + k]], k, v[k]};
     }
     return n;
@@ -394,28 +394,85 @@ uint32_t pathBlocks(const vg_graph& g, vg_workspace& ws, uint32_t lca, const End
 
 // cost[c]: a lower bound of the paths from the endpoint through its patch's c-th exit
 // candidate (a slot that is a hub, in hub order) to the other endpoint; +inf where the
-// endpoint does not reach it. Returns the slot of the smallest, the likeliest exit (kNone
-// if none).
-uint32_t exitCosts(const vg_graph& g, const vg_workspace& ws, uint32_t first, const uint16_t* v,
-                   const EndpointBounds& other, float* cost) {
-    const uint32_t stride = 3 + g.landmarkCount;
-    const uint32_t begin = ws.hubSlotRecordBegin[first], end = ws.hubSlotRecordBegin[first + 1];
-    const float* record = ws.hubSlotRecords + uint64_t(begin) * stride;
+// endpoint does not reach it (or c pads the last group). Returns the slot of the smallest,
+// the likeliest exit (kNone if none). The portable and AVX2 versions give the same numbers.
+uint32_t likeliestExit(const vg_workspace& ws, uint32_t begin, uint32_t end, const float* cost) {
     uint32_t best = kNone;
     float bestCost = __builtin_inff();
-    for (uint32_t c = begin; c < end; ++c, record += stride) {
-        const uint32_t k = ws.hubSlotOrder[c];
-        float& out = cost[c - begin];
-        out = __builtin_inff();
-        if (v[k] == kNoStep) continue;
-        const float bound = withLandmarks(g, record, other.landmarks, recordDistance(record, other.position));
-        out = float(v[k]) * g.hubLabelScale + bound * kBoundShrink;
-        if (best == kNone || out < bestCost) {
-            best = k;
-            bestCost = out;
+    for (uint32_t c = begin; c < end; ++c) {
+        const float x = cost[c - begin];
+        if (x == __builtin_inff()) continue;
+        if (best == kNone || x < bestCost) {
+            best = ws.hubSlotOrder[c];
+            bestCost = x;
         }
     }
     return best;
+}
+
+uint32_t exitCosts(const vg_graph& g, const vg_workspace& ws, uint32_t first, const uint16_t* v,
+                   const EndpointBounds& other, float* cost) {
+    const uint64_t stride = 3 + g.landmarkCount;
+    const uint32_t begin = ws.hubSlotRecordBegin[first], end = ws.hubSlotRecordBegin[first + 1];
+    float record[3 + kMaxLandmarks];
+    for (uint32_t c = begin; c < end; ++c) {
+        const uint32_t k = ws.hubSlotOrder[c];
+        float& out = cost[c - begin];
+        out = __builtin_inff();
+        if (k == kNone || v[k] == kNoStep) continue;
+        for (uint64_t f = 0; f < stride; ++f) record[f] = slotRecordField(ws.hubSlotRecords, stride, c, f);
+        const float bound = withLandmarks(g, record, other.landmarks, recordDistance(record, other.position));
+        out = float(v[k]) * g.hubLabelScale + bound * kBoundShrink;
+    }
+    return likeliestExit(ws, begin, end, cost);
+}
+
+#if VG_HUB_AVX2
+// The same, a group of kRecordLanes candidates at a time: the straight line and each
+// landmark's bound (a landmark the other endpoint does not reach is no bound; an infinite
+// difference never is one) as lanes, the same operations in the same order as withLandmarks.
+VG_AVX2_TARGET uint32_t exitCostsAvx2(const vg_graph& g, const vg_workspace& ws, uint32_t first, const uint16_t* v,
+                                      const EndpointBounds& other, float* cost) {
+    static_assert(kRecordLanes == 8, "one AVX2 register of floats per group");
+    const uint64_t stride = 3 + g.landmarkCount;
+    const uint32_t begin = ws.hubSlotRecordBegin[first], end = ws.hubSlotRecordBegin[first + 1];
+    const __m256 inf = _mm256_set1_ps(__builtin_inff()), absMask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+    const __m256 px = _mm256_set1_ps(other.position[0]), py = _mm256_set1_ps(other.position[1]),
+                 pz = _mm256_set1_ps(other.position[2]);
+    const __m256 scale = _mm256_set1_ps(g.hubLabelScale), shrink = _mm256_set1_ps(kBoundShrink);
+    for (uint32_t c = begin; c < end; c += kRecordLanes) {
+        const float* group = ws.hubSlotRecords + uint64_t(c) * stride;
+        alignas(32) float steps[kRecordLanes];
+        for (uint32_t j = 0; j < kRecordLanes; ++j) {
+            const uint32_t k = ws.hubSlotOrder[c + j];
+            steps[j] = k == kNone || v[k] == kNoStep ? __builtin_inff() : float(v[k]);
+        }
+        const __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(group), px);
+        const __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(group + kRecordLanes), py);
+        const __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(group + 2 * kRecordLanes), pz);
+        __m256 best = _mm256_sqrt_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
+                                                   _mm256_mul_ps(dz, dz)));
+        for (uint32_t k = 0; k < g.landmarkCount; ++k) {
+            const __m256 rk = _mm256_loadu_ps(group + (3 + k) * kRecordLanes);
+            const __m256 d = _mm256_sub_ps(_mm256_and_ps(_mm256_sub_ps(rk, _mm256_set1_ps(other.landmarks[k])), absMask),
+                                           _mm256_set1_ps(2.0f * g.landmarkScale[k]));
+            const __m256 take = _mm256_and_ps(_mm256_cmp_ps(d, best, _CMP_GT_OQ), _mm256_cmp_ps(d, inf, _CMP_NEQ_OQ));
+            best = _mm256_blendv_ps(best, d, take);
+        }
+        const __m256 s = _mm256_load_ps(steps);
+        const __m256 out = _mm256_add_ps(_mm256_mul_ps(s, scale), _mm256_mul_ps(best, shrink));
+        _mm256_storeu_ps(cost + (c - begin), _mm256_blendv_ps(out, inf, _mm256_cmp_ps(s, inf, _CMP_EQ_OQ)));
+    }
+    return likeliestExit(ws, begin, end, cost);
+}
+#endif
+
+uint32_t exitCostsOn(const vg_graph& g, const vg_workspace& ws, uint32_t first, const uint16_t* v,
+                     const EndpointBounds& other, float* cost) {
+#if VG_HUB_AVX2
+    if (g.avx2) return exitCostsAvx2(g, ws, first, v, other, cost);
+#endif
+    return exitCosts(g, ws, first, v, other, cost);
 }
 
 // The label distance between two hubs: their rows in every block of the path down to their
@@ -458,18 +515,18 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
     uint16_t* vT = ws.hubTargetSlotSteps;
     const uint32_t slotsS = a.hub == kNone ? g.first[a.first].slotCount : 0;
     float* costS = ws.hubSlotCost;
-    float* costT = ws.hubSlotCost + slotsS;
+    float* costT = ws.hubSlotCost + slotsS + kRecordLanes;  // s's candidates pad to a whole group
     uint32_t hubS = a.hub, hubT = b.hub;
     uint16_t baseS = 0, baseT = 0;
     if (a.hub == kNone) {
         innerSteps(g, s, a, vS);
-        const uint32_t k = exitCosts(g, ws, a.first, vS, boundsT, costS);
+        const uint32_t k = exitCostsOn(g, ws, a.first, vS, boundsT, costS);
         hubS = k == kNone ? kNone : g.nodeHub[g.slots[g.first[a.first].slotBegin + k]];
         baseS = k == kNone ? kNoStep : vS[k];
     }
     if (b.hub == kNone) {
         innerSteps(g, t, b, vT);
-        const uint32_t k = exitCosts(g, ws, b.first, vT, boundsS, costT);
+        const uint32_t k = exitCostsOn(g, ws, b.first, vT, boundsS, costT);
         hubT = k == kNone ? kNone : g.nodeHub[g.slots[g.first[b.first].slotBegin + k]];
         baseT = k == kNone ? kNoStep : vT[k];
     }

@@ -115,11 +115,13 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.hubSubtreeEnd = L.take<uint32_t>(g.hubTreeCount);
     o.hubSlotSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? largestFirstPatch(g) : 0) + 16);
     o.hubTargetSlotSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? largestFirstPatch(g) : 0) + 16);
-    o.hubSlotCost = L.take<float>(2 * uint64_t(g.hubTreeCount ? largestFirstPatch(g) : 0));
+    o.hubSlotCost = L.take<float>(2 * uint64_t(g.hubTreeCount ? largestFirstPatch(g) + vg::kRecordLanes : 0));
     o.hubBlockBegin = L.take<uint32_t>(uint64_t(g.hubTreeCount) + 1);
     o.hubSlotRecordBegin = L.take<uint32_t>(g.hubTreeCount ? uint64_t(g.firstCount) + 1 : 0);
-    o.hubSlotOrder = L.take<uint32_t>(g.hubTreeCount ? firstSlotCount(g) : 0);
-    o.hubSlotRecords = L.take<float>(g.hubTreeCount ? firstSlotCount(g) * (3 + uint64_t(g.landmarkCount)) : 0);
+    // Each patch's candidates start a group of kRecordLanes (padded with kNone slots).
+    const uint64_t candidates = g.hubTreeCount ? firstSlotCount(g) + uint64_t(g.firstCount) * vg::kRecordLanes : 0;
+    o.hubSlotOrder = L.take<uint32_t>(candidates);
+    o.hubSlotRecords = L.take<float>(candidates * (3 + uint64_t(g.landmarkCount)));
     o.hubBlocks = L.take<vg::HubBlockRef>(pathBlocks);
     o.graph = &g;
     o.generation = 0;
@@ -164,7 +166,9 @@ void fillHubBlockBegin(const vg_graph& g, uint32_t* begin) {
 
 // The hub-label query bounds every first-layer slot of an endpoint's patch that is a hub
 // (its exits): per patch their slot numbers in hub order, so that the label rows are read
-// forward, and their node records side by side, so that the bounds are one run.
+// forward, and their node records side by side in groups of kRecordLanes, field by field
+// (vg_workspace.h), so that the bounds of a group are one vector step. Each patch starts a
+// group; the slots that pad its last group are kNone.
 void fillHubSlotRecords(const vg_graph& g, const float* nodeRecords, uint32_t* begin, uint32_t* order,
                         float* slotRecords) {
     const uint64_t stride = 3 + uint64_t(g.landmarkCount);
@@ -179,9 +183,12 @@ void fillHubSlotRecords(const vg_graph& g, const float* nodeRecords, uint32_t* b
             for (; i > begin[p] && hubOf(p, order[i - 1]) > hub; --i) order[i] = order[i - 1];
             order[i] = k;
         }
+        for (; next % vg::kRecordLanes != 0; ++next) order[next] = vg::kNone;
         for (uint32_t i = begin[p]; i < next; ++i) {
-            const uint32_t node = g.slots[g.first[p].slotBegin + order[i]];
-            memcpy(slotRecords + i * stride, nodeRecords + uint64_t(node) * stride, stride * sizeof(float));
+            const uint32_t k = order[i];
+            for (uint64_t f = 0; f < stride; ++f)
+                vg::slotRecordField(slotRecords, stride, i, f) =
+                    k == vg::kNone ? 0.0f : nodeRecords[uint64_t(g.slots[g.first[p].slotBegin + k]) * stride + f];
         }
     }
     begin[g.firstCount] = next;

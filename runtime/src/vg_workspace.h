@@ -238,12 +238,21 @@ struct vg_workspace {
     float* hubSlotCost;            // ... both endpoints' lower bounds through each (2 per slot),
     uint32_t* hubBlockBegin;       // ... per tree node its first block (T + 1, filled at init),
     uint32_t* hubSlotRecordBegin;  // ... per first-layer patch (+ 1) its first exit candidate,
-    uint32_t* hubSlotOrder;        // ... per patch its slots that are hubs, in hub order,
-    float* hubSlotRecords;         // ... and their nodes' records (all three filled at init),
+    uint32_t* hubSlotOrder;        // ... per patch its slots that are hubs, in hub order (kNone pads),
+    float* hubSlotRecords;         // ... and their nodes' records by groups of kRecordLanes
+                                   //     (slotRecordField; all three filled at init),
     vg::HubBlockRef* hubBlocks;    // ... and the blocks of the common tree path a query reads
 };
 
 namespace vg {
+
+// The exit candidates' node records (position, then landmark distances: `stride` fields) are
+// stored in groups of kRecordLanes candidates, field by field, so that the query bounds a
+// group at once.
+constexpr uint32_t kRecordLanes = 8;
+inline float& slotRecordField(float* records, uint64_t stride, uint64_t candidate, uint64_t field) {
+    return records[(candidate / kRecordLanes) * kRecordLanes * stride + field * kRecordLanes + candidate % kRecordLanes];
+}
 
 // Legs a path may have (its node chain plus the endpoints and a crossing, twice over for
 // first-layer legs expanded into the second layer).

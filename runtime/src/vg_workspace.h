@@ -235,7 +235,8 @@ struct vg_workspace {
     uint32_t* hubSubtreeEnd;       // ... per tree node the end of its subtree's hubs (filled at init),
     uint16_t* hubSlotSteps;        // ... an endpoint's to each first-layer node of its patch,
     uint16_t* hubTargetSlotSteps;  // ... the target's to each first-layer node of its patch,
-    float* hubSlotCost;            // ... both endpoints' lower bounds through each (2 per slot),
+    float* hubSlotCost;            // ... both endpoints' lower bounds through each (per side a patch
+                                   //     padded to a whole group of kRecordLanes),
     uint32_t* hubBlockBegin;       // ... per tree node its first block (T + 1, filled at init),
     uint32_t* hubSlotRecordBegin;  // ... per first-layer patch (+ 1) its first exit candidate,
     uint32_t* hubSlotOrder;        // ... per patch its slots that are hubs, in hub order (kNone pads),

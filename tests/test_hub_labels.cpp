@@ -92,9 +92,9 @@ TEST_CASE("hub labels on a pruned graph answer like its search", "[hub]") {
 
 TEST_CASE("hub labels: the pruned reads answer like reading every label", "[hub]") {
     // The query reads only the first-layer nodes and hub blocks whose lower bounds stay
-    // within an upper bound of the answer. Skipping only removes candidates, so it never
-    // answers less than the full reads; it answers more only where an unfolded crossing
-    // next to t undercuts a skipped node's bound (kUpperSlack): rarely and by little.
+    // within an upper bound of the answer, widened by the longest node edge next to t (an
+    // unfolded crossing there undercuts a node path by less than that). So it answers
+    // exactly as reading every label does, bit for bit.
     for (const double delta : {0.0, 0.002}) {
         const std::vector<uint8_t> blob = delta == 0.0 ? labelledBlob() : bakeLabelled(false, 0, delta);
         RuntimeGraph g = openOrFail(blob);
@@ -104,7 +104,7 @@ TEST_CASE("hub labels: the pruned reads answer like reading every label", "[hub]
         std::mt19937 rng(11);
         std::uniform_int_distribution<uint32_t> pick(0, V - 1);
         size_t answered = 0, differ = 0;
-        for (int i = 0; i < 600; ++i) {
+        for (int i = 0; i < 3000; ++i) {
             const uint32_t s = pick(rng), t = pick(rng);
             float pruned = 0, full = 0;
             const bool a = vg::hubDistance(*g.graph(), *ws.get(), s, t, __builtin_inff(), &pruned, true);
@@ -112,12 +112,10 @@ TEST_CASE("hub labels: the pruned reads answer like reading every label", "[hub]
             REQUIRE(a == b);
             if (!a) continue;
             ++answered;
-            CHECK(pruned >= full);
-            CHECK(pruned <= 1.05f * full);
             differ += pruned != full;
         }
-        CHECK(answered > 300);
-        CHECK(differ * 50 <= answered);  // at most 2%
+        CHECK(answered > 1500);
+        CHECK(differ == 0);
     }
 }
 

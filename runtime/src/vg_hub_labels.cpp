@@ -332,13 +332,16 @@ uint32_t sideExits(const vg_graph& g, const vg_workspace& ws, const Side& side, 
 // with an exact first layer, up to the second layer's own error (at most 1.5% on the
 // shared meshes), so they are shrunk by this factor first.
 constexpr float kBoundShrink = 0.98f;
-// The upper bound comes from node paths, and next to t an unfolded crossing may undercut a
-// node path by up to kUnfoldSlack: a node skipped by the bound could still have given the
-// best crossing. Loosening the bound by kUnfoldSlack would keep every answer of the full
-// reads at 1.4x the time on igea; this factor keeps all of 5,800 random igea pairs and
-// ~99% on a coarse 4,800-vertex torus (tests/test_hub_labels.cpp). Skipping only removes
-// candidates, so an answer that differs is the larger one (by at most a few percent).
-constexpr float kUpperSlack = 1.02f;
+// The bounds (the straight line, and landmark distances taken over node paths) and the
+// upper bound describe node paths. Next to t the answer may be an unfolded crossing of a
+// node edge (u, x) instead, shorter than the better of its two node paths by less than
+// the edge's length: with p where the segment meets the edge, d(s, u) + d(u, t) <= |s'p| +
+// |pu| + |up| + |pt'|, so the node path through the nearer end is at most 2 |up| <= |ux|
+// longer. So every test allows the longest node edge next to t (nodeEdgeReach) on top of
+// the upper bound, and the pruned reads answer as the full reads do. The upper bound also
+// gets one label step (t's side rounds its row distances to steps, the answer does not)
+// and this factor for the float sums.
+constexpr float kUpperSlack = 1.001f;
 
 struct EndpointBounds {
     const float* position;
@@ -390,6 +393,16 @@ uint32_t pathBlocks(const vg_graph& g, vg_workspace& ws, uint32_t lca, const End
         out[j - 1] = r;
     }
     return count;
+}
+
+// The longest node edge at the nodes of t's second-layer patches (filled per patch at
+// workspace init): the most an unfolded crossing next to t can undercut a node path.
+float nodeEdgeReach(const vg_graph& g, const vg_workspace& ws, uint32_t t) {
+    float reach = 0.0f;
+    forEachPatchOf(g, t, [&](uint32_t patch, uint32_t) {
+        reach = ws.hubPatchReach[patch] > reach ? ws.hubPatchReach[patch] : reach;
+    });
+    return reach;
 }
 
 // cost[c]: a lower bound of the paths from the endpoint through its patch's c-th exit
@@ -533,6 +546,7 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
     float upper = __builtin_inff();
     if (prune && hubS != kNone && hubT != kNone)
         upper = kUpperSlack * distanceOf(saturatingSum(saturatingSum(baseS, baseT), hubToHub(g, ws, hubS, hubT)));
+    if (upper != __builtin_inff()) upper += scale + (b.hub == kNone ? nodeEdgeReach(g, ws, t) : 0.0f);
 
     const uint32_t blockCount = pathBlocks(g, ws, lca, boundsS, boundsT, upper);
     const HubBlockRef* blocks = ws.hubBlocks;

@@ -123,6 +123,7 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.hubSlotOrder = L.take<uint32_t>(candidates);
     o.hubSlotRecords = L.take<float>(candidates * (3 + uint64_t(g.landmarkCount)));
     o.hubBlocks = L.take<vg::HubBlockRef>(pathBlocks);
+    o.hubPatchReach = L.take<float>(g.hubTreeCount ? g.secondCount : 0);
     o.graph = &g;
     o.generation = 0;
     o.slice = vg::FieldSlice{0, 0, 0, nullptr, nullptr, 0, nullptr, nullptr};
@@ -194,6 +195,24 @@ void fillHubSlotRecords(const vg_graph& g, const float* nodeRecords, uint32_t* b
     begin[g.firstCount] = next;
 }
 
+// An unfolded crossing next to a label query's target undercuts a node path by less than
+// the crossed node edge (vg_hub_labels.cpp): per second-layer patch the longest node edge
+// at its active nodes, so that a query bounds that by one read per patch.
+void fillHubPatchReach(const vg_graph& g, float* reach) {
+    for (uint32_t p = 0; p < g.secondCount; ++p) {
+        float longest = 0.0f;
+        for (uint32_t j = 0; j < g.second[p].nodeCount; ++j) {
+            const uint32_t u = g.slots[g.second[p].slotBegin + j];
+            if (!vg::nodeActive(g, u)) continue;
+            for (uint32_t e = g.nodeEdgeBegin[u]; e < g.nodeEdgeBegin[u + 1]; ++e) {
+                const float l = vg::euclidean(g, g.nodeVertex[u], g.nodeVertex[g.nodeEdge[e]]);
+                longest = l > longest ? l : longest;
+            }
+        }
+        reach[p] = longest;
+    }
+}
+
 }  // namespace
 
 namespace vg {
@@ -235,6 +254,7 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
         ws->hubSubtreeEnd[t] = vg::hubSubtreeEnd(graph->hubTree, graph->hubTreeCount, graph->hubCount, t);
     if (graph->hubTreeCount)
         fillHubSlotRecords(*graph, ws->nodeRecords, ws->hubSlotRecordBegin, ws->hubSlotOrder, ws->hubSlotRecords);
+    if (graph->hubTreeCount) fillHubPatchReach(*graph, ws->hubPatchReach);
     ws->searchMode = VG_SEARCH_HUB_LABELS;
     *out_workspace = ws;
     return VG_OK;

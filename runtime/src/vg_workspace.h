@@ -242,7 +242,8 @@ struct vg_workspace {
     uint32_t* hubSlotOrder;        // ... per patch its slots that are hubs, in hub order (kNone pads),
     float* hubSlotRecords;         // ... and their nodes' records by groups of kRecordLanes
                                    //     (slotRecordField; all three filled at init),
-    vg::HubBlockRef* hubBlocks;    // ... and the blocks of the common tree path a query reads
+    vg::HubBlockRef* hubBlocks;    // ... and the blocks of the common tree path a query reads,
+    float* hubPatchReach;          // ... per second-layer patch its longest node edge (filled at init)
 };
 
 namespace vg {

@@ -7,6 +7,10 @@
 #include <cstring>
 #include <random>
 #include <thread>
+#include <fstream>
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 #include "bake.h"
 #include "blob_test_helpers.h"
@@ -111,6 +115,77 @@ TEST_CASE("runtime: opens a baked blob, compressed or in place, and reports its 
     CHECK(vg_open(copy.data(), raw.size(), memory.data(), need - 1, &graph) == VG_ERR_BUFFER_TOO_SMALL);
     CHECK(graph == nullptr);
 }
+
+#if defined(__linux__)
+namespace {
+
+// The VmFlags line of /proc/self/smaps for the mapping that holds `address` ("" if none).
+std::string vmFlagsAt(const void* address) {
+    std::ifstream smaps("/proc/self/smaps");
+    const uintptr_t a = reinterpret_cast<uintptr_t>(address);
+    std::string line;
+    bool inside = false;
+    while (std::getline(smaps, line)) {
+        unsigned long lo = 0, hi = 0;
+        if (std::sscanf(line.c_str(), "%lx-%lx ", &lo, &hi) == 2 && line.find('-') < line.find(' ')) inside = a >= lo && a < hi;
+        else if (inside && line.rfind("VmFlags:", 0) == 0) return line;
+    }
+    return "";
+}
+
+bool hasFlag(const std::string& vmFlags, const char* flag) {
+    return (vmFlags + " ").find(std::string(" ") + flag + " ") != std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("runtime: vg_open and vg_workspace_init ask for huge pages in large buffers only", "[runtime]") {
+    if (!std::ifstream("/sys/kernel/mm/transparent_hugepage/enabled") || vmFlagsAt(&bumpyBlob()).empty()) {
+        WARN("skipped: no transparent huge pages or no /proc/self/smaps on this system");
+        return;
+    }
+    // 8 MB, 2 MB aligned, fresh from mmap: the graph and the workspace of the test torus fit.
+    constexpr size_t kHuge = size_t(2) << 20, kBytes = 4 * kHuge;
+    auto fresh = [] {
+        void* p = mmap(nullptr, kBytes + kHuge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        REQUIRE(p != MAP_FAILED);
+        return p;
+    };
+    void* graphMapping = fresh();
+    void* wsMapping = fresh();
+    auto aligned = [](void* p) { return reinterpret_cast<unsigned char*>((reinterpret_cast<uintptr_t>(p) + kHuge - 1) & ~(kHuge - 1)); };
+    unsigned char* graphMemory = aligned(graphMapping);
+    unsigned char* wsMemory = aligned(wsMapping);
+    CHECK_FALSE(hasFlag(vmFlagsAt(graphMemory), "hg"));
+
+    const std::vector<uint8_t>& blob = bumpyBlob();
+    size_t need = 0;
+    REQUIRE(vg_open_size(blob.data(), blob.size(), &need) == VG_OK);
+    REQUIRE(need <= kBytes);
+    const vg_graph* g = nullptr;
+    REQUIRE(vg_open(blob.data(), blob.size(), graphMemory, kBytes, &g) == VG_OK);
+    CHECK(hasFlag(vmFlagsAt(graphMemory), "hg"));
+    CHECK(hasFlag(vmFlagsAt(graphMemory + kBytes - 1), "hg"));
+    CHECK_FALSE(hasFlag(vmFlagsAt(graphMemory + kBytes), "hg"));  // the page after the buffer is not ours
+
+    REQUIRE(vg_workspace_size(g) <= kBytes);
+    vg_workspace* ws = nullptr;
+    REQUIRE(vg_workspace_init(g, wsMemory, kBytes, &ws) == VG_OK);
+    CHECK(hasFlag(vmFlagsAt(wsMemory), "hg"));
+    float d = 0.0f;
+    CHECK(vg_distance(g, ws, 3, 1500, &d) == VG_OK);
+    CHECK(d == RuntimeWorkspace(openOrFail(blob).graph()).distance(3, 1500));
+
+    // A buffer holding no whole 2 MB page is left alone.
+    void* smallMapping = fresh();
+    unsigned char* small = aligned(smallMapping) + 4096;
+    REQUIRE(vg_open(blob.data(), blob.size(), small, kHuge - 8192, &g) == (need <= kHuge - 8192 ? VG_OK : VG_ERR_BUFFER_TOO_SMALL));
+    CHECK_FALSE(hasFlag(vmFlagsAt(small), "hg"));
+    munmap(graphMapping, kBytes + kHuge);
+    munmap(wsMapping, kBytes + kHuge);
+    munmap(smallMapping, kBytes + kHuge);
+}
+#endif
 
 TEST_CASE("runtime: vg_open_file maps or decompresses with the caller's allocator", "[runtime]") {
     test::TempDir dir;

@@ -7,6 +7,7 @@
 #include "vg_graph.h"
 #include "vg_decode.h"
 #include "vg_field_kernels.h"
+#include "vg_huge_pages.h"
 #include "vg_validate.h"
 #include "vorogeo_container.h"
 
@@ -107,6 +108,8 @@ extern "C" vg_status vg_open(const void* blob, size_t blob_size, void* memory, s
     const unsigned char* payload = static_cast<const unsigned char*>(blob) + VG_CONTAINER_HEADER_SIZE;
     if (vg_checksum64(payload, size_t(h.payloadSize)) != h.checksum) return VG_ERR_CHECKSUM;
 
+    // Before the first write: a compressed or copied graph is then laid out in huge pages.
+    vg::adviseHugePages(memory, memory_size);
     unsigned char* cursor = reinterpret_cast<unsigned char*>(
         (reinterpret_cast<uintptr_t>(memory) + kAlign - 1) & ~uintptr_t(kAlign - 1));
     vg_graph* graph = reinterpret_cast<vg_graph*>(cursor);

@@ -4,6 +4,7 @@
 
 #include "vg_path_taut.h"
 #include "vg_field_kernels.h"
+#include "vg_huge_pages.h"
 
 #include <string.h>
 
@@ -242,6 +243,7 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
     *out_workspace = nullptr;
     if (graph == nullptr || memory == nullptr) return VG_ERR_INVALID_ARGUMENT;
     if (memory_size < vg_workspace_size(graph)) return VG_ERR_BUFFER_TOO_SMALL;
+    vg::adviseHugePages(memory, memory_size);  // before the first write (vg_huge_pages.h)
     unsigned char* base = reinterpret_cast<unsigned char*>(
         (reinterpret_cast<uintptr_t>(memory) + kAlign - 1) & ~uintptr_t(kAlign - 1));
     Layout L{base};

@@ -342,6 +342,9 @@ constexpr float kBoundShrink = 0.98f;
 // gets one label step (t's side rounds its row distances to steps, the answer does not)
 // and this factor for the float sums.
 constexpr float kUpperSlack = 1.001f;
+// The relative float error allowed for an unfolded crossing against its geometric length
+// (the unfolding takes square roots of differences), when deciding it cannot win.
+constexpr float kCrossingMargin = 1.001f;
 
 struct EndpointBounds {
     const float* position;
@@ -544,9 +547,10 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
         baseT = k == kNone ? kNoStep : vT[k];
     }
     float upper = __builtin_inff();
+    const float reach = b.hub == kNone ? nodeEdgeReach(g, ws, t) : 0.0f;
     if (prune && hubS != kNone && hubT != kNone)
         upper = kUpperSlack * distanceOf(saturatingSum(saturatingSum(baseS, baseT), hubToHub(g, ws, hubS, hubT)));
-    if (upper != __builtin_inff()) upper += scale + (b.hub == kNone ? nodeEdgeReach(g, ws, t) : 0.0f);
+    if (upper != __builtin_inff()) upper += scale + reach;
 
     const uint32_t blockCount = pathBlocks(g, ws, lca, boundsS, boundsT, upper);
     const HubBlockRef* blocks = ws.hubBlocks;
@@ -586,6 +590,11 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
         if (b.node != kNone && nodeActive(g, b.node)) label(b.node, 0.0f);
         forEachRowNode(g, t, label);
         // Meetings at a node, and across a mesh edge between two of them (vg_distance.cpp).
+        // A crossing undercuts the better of its two node paths by less than its edge, at
+        // most `reach` (kUpperSlack's comment): an edge whose node paths both exceed the
+        // best answer so far by more than that (and a margin for the unfolding's float
+        // error) cannot lower it, and is not unfolded.
+        const float skipAbove = prune ? kCrossingMargin : __builtin_inff();
         for (uint32_t i = 0; i < metCount; ++i) {
             const uint32_t v = met[i];
             const float fv = F.label[v].dist, bv = B.label[v].dist;
@@ -593,6 +602,8 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
             for (uint32_t e = g.nodeEdgeBegin[v]; e < g.nodeEdgeBegin[v + 1]; ++e) {
                 const uint32_t x = g.nodeEdge[e];
                 if (!B.labelled(x)) continue;
+                const float viaX = F.label[x].dist + B.label[x].dist, nodePath = fv + bv < viaX ? fv + bv : viaX;
+                if (nodePath - reach > best * skipAbove) continue;
                 const float d = crossing(fv, F.label[x].dist, bv, B.label[x].dist,
                                          euclidean(g, g.nodeVertex[v], g.nodeVertex[x]));
                 if (d < best) best = d;

@@ -148,33 +148,22 @@ bool shareFirstPatch(const vg_graph& g, const Side& a, const Side& b) {
     return false;
 }
 
-// Row of `node` among the inner rows of first-layer patch `first`, kNone if absent.
-uint32_t innerRow(const vg_graph& g, uint32_t first, uint32_t node) {
-    const uint32_t* nodes = g.hubInnerNode + g.hubInnerBegin[first];
-    uint32_t lo = 0, hi = g.hubInnerBegin[first + 1] - g.hubInnerBegin[first];
-    while (lo < hi) {
-        const uint32_t mid = lo + (hi - lo) / 2;
-        if (nodes[mid] < node) lo = mid + 1;
-        else hi = mid;
-    }
-    return lo < g.hubInnerBegin[first + 1] - g.hubInnerBegin[first] && nodes[lo] == node ? lo : kNone;
-}
-
 const uint16_t* innerRowData(const vg_graph& g, uint32_t first, uint32_t row) {
     return g.hubInner + g.hubInnerMatrixBegin[first] + uint64_t(row) * g.first[first].slotCount;
 }
 
-// Calls f(node, distance) for the active nodes of x's second-layer patches (not x itself)
-// with x's row entry to each, where there is a path.
+// Calls f(node, distance, inner row) for the active nodes of x's second-layer patches (not
+// x itself) with x's row entry to each, where there is a path, and the node's inner row in
+// the patches' first-layer patch (kNone if it has none).
 template <class F>
-void forEachRowNode(const vg_graph& g, uint32_t x, F&& f) {
+void forEachRowNode(const vg_graph& g, const vg_workspace& ws, uint32_t x, F&& f) {
     forEachPatchOf(g, x, [&](uint32_t patch, uint32_t slot) {
         const Patch& p = g.second[patch];
         for (uint32_t j = 0; j < p.nodeCount; ++j) {
             const uint32_t n = g.slots[p.slotBegin + j];
             if (j == slot || !nodeActive(g, n)) continue;
             const uint32_t q = quantum(g.secondDistances, entryIndex(p, slot, j));
-            if (q != kNoPathQuantum) f(n, float(q) * p.scale);
+            if (q != kNoPathQuantum) f(n, float(q) * p.scale, ws.hubInnerRowOfSlot[p.slotBegin + j]);
         }
     });
 }
@@ -182,7 +171,7 @@ void forEachRowNode(const vg_graph& g, uint32_t x, F&& f) {
 // v[k]: the distance inside the side's first-layer patch from vertex x to its k-th slot
 // (a first-layer node), in label steps: x's patch rows to the active nodes of its patches,
 // then their inner rows (an active node is an inner row itself).
-void innerSteps(const vg_graph& g, uint32_t x, const Side& side, uint16_t* v) {
+void innerSteps(const vg_graph& g, const vg_workspace& ws, uint32_t x, const Side& side, uint16_t* v) {
     const uint32_t first = side.first, K = g.first[first].slotCount;
     for (uint32_t k = 0; k < K; ++k) v[k] = kNoStep;
     if (side.node != kNone && nodeActive(g, side.node)) {
@@ -190,10 +179,9 @@ void innerSteps(const vg_graph& g, uint32_t x, const Side& side, uint16_t* v) {
         if (r != kNone) lowerStepsOn(g, v, innerRowData(g, first, r), K, 0);
         return;
     }
-    forEachRowNode(g, x, [&](uint32_t n, float d) {
+    forEachRowNode(g, ws, x, [&](uint32_t, float d, uint32_t r) {
         const uint16_t base = toSteps(d, g.hubLabelScale);
-        const uint32_t r = base == kNoStep ? kNone : innerRow(g, first, n);
-        if (r != kNone) lowerStepsOn(g, v, innerRowData(g, first, r), K, base);
+        if (base != kNoStep && r != kNone) lowerStepsOn(g, v, innerRowData(g, first, r), K, base);
     });
 }
 
@@ -507,6 +495,17 @@ uint16_t hubToHub(const vg_graph& g, const vg_workspace& ws, uint32_t a, uint32_
 
 }  // namespace
 
+uint32_t innerRow(const vg_graph& g, uint32_t first, uint32_t node) {
+    const uint32_t* nodes = g.hubInnerNode + g.hubInnerBegin[first];
+    uint32_t lo = 0, hi = g.hubInnerBegin[first + 1] - g.hubInnerBegin[first];
+    while (lo < hi) {
+        const uint32_t mid = lo + (hi - lo) / 2;
+        if (nodes[mid] < node) lo = mid + 1;
+        else hi = mid;
+    }
+    return lo < g.hubInnerBegin[first + 1] - g.hubInnerBegin[first] && nodes[lo] == node ? lo : kNone;
+}
+
 bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance, float* out,
                  bool prune) {
     if (g.hubTreeCount == 0 || s == t || g.vertexPatch[s] == kNone || g.vertexPatch[t] == kNone) return false;
@@ -535,13 +534,13 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
     uint32_t hubS = a.hub, hubT = b.hub;
     uint16_t baseS = 0, baseT = 0;
     if (a.hub == kNone) {
-        innerSteps(g, s, a, vS);
+        innerSteps(g, ws, s, a, vS);
         const uint32_t k = exitCostsOn(g, ws, a.first, vS, boundsT, costS);
         hubS = k == kNone ? kNone : g.nodeHub[g.slots[g.first[a.first].slotBegin + k]];
         baseS = k == kNone ? kNoStep : vS[k];
     }
     if (b.hub == kNone) {
-        innerSteps(g, t, b, vT);
+        innerSteps(g, ws, t, b, vT);
         const uint32_t k = exitCostsOn(g, ws, b.first, vT, boundsS, costT);
         hubT = k == kNone ? kNone : g.nodeHub[g.slots[g.first[b.first].slotBegin + k]];
         baseT = k == kNone ? kNoStep : vT[k];
@@ -576,9 +575,8 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
         Frontier& B = ws.backward;
         uint32_t* met = ws.patchNodeSlot;  // the nodes labelled from both sides
         uint32_t metCount = 0;
-        auto label = [&](uint32_t u, float fromT) {
+        auto label = [&](uint32_t u, float fromT, uint32_t r) {
             if (!B.labelled(u)) {
-                const uint32_t r = innerRow(g, first, u);
                 if (r == kNone) return;
                 F.label[u] = Label{distanceOf(meetStepsOn(g, w, innerRowData(g, first, r), fp.slotCount)), gen};
                 B.label[u] = Label{fromT, gen};
@@ -587,8 +585,8 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
                 B.label[u].dist = fromT;
             }
         };
-        if (b.node != kNone && nodeActive(g, b.node)) label(b.node, 0.0f);
-        forEachRowNode(g, t, label);
+        if (b.node != kNone && nodeActive(g, b.node)) label(b.node, 0.0f, innerRow(g, first, b.node));
+        forEachRowNode(g, ws, t, label);
         // Meetings at a node, and across a mesh edge between two of them (vg_distance.cpp).
         // A crossing undercuts the better of its two node paths by less than its edge, at
         // most `reach` (kUpperSlack's comment): an edge whose node paths both exceed the

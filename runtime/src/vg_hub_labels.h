@@ -19,4 +19,8 @@ namespace vg {
 bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance, float* out,
                  bool prune = true);
 
+// Row of `node` among the inner rows of first-layer patch `first` (binary search of its
+// sorted node list), kNone if absent.
+uint32_t innerRow(const vg_graph& g, uint32_t first, uint32_t node);
+
 }  // namespace vg

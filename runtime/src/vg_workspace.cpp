@@ -5,6 +5,7 @@
 #include "vg_path_taut.h"
 #include "vg_field_kernels.h"
 #include "vg_huge_pages.h"
+#include "vg_hub_labels.h"
 
 #include <string.h>
 
@@ -125,6 +126,7 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.hubSlotRecords = L.take<float>(candidates * (3 + uint64_t(g.landmarkCount)));
     o.hubBlocks = L.take<vg::HubBlockRef>(pathBlocks);
     o.hubPatchReach = L.take<float>(g.hubTreeCount ? g.secondCount : 0);
+    o.hubInnerRowOfSlot = L.take<uint32_t>(g.hubTreeCount ? secondNodeSlotEnd(g) : 0);
     o.graph = &g;
     o.generation = 0;
     o.slice = vg::FieldSlice{0, 0, 0, nullptr, nullptr, 0, nullptr, nullptr};
@@ -214,6 +216,16 @@ void fillHubPatchReach(const vg_graph& g, float* reach) {
     }
 }
 
+// Which inner row (vg_hub_labels.cpp) each node slot's node has in its patch's first-layer
+// patch: the query then finds an endpoint's rows without searching the sorted node lists.
+void fillHubInnerRows(const vg_graph& g, uint32_t* rowOfSlot) {
+    for (uint32_t p = 0; p < g.secondCount; ++p) {
+        const vg::Patch& patch = g.second[p];
+        for (uint32_t j = 0; j < patch.nodeCount; ++j)
+            rowOfSlot[patch.slotBegin + j] = vg::innerRow(g, patch.parent, g.slots[patch.slotBegin + j]);
+    }
+}
+
 }  // namespace
 
 namespace vg {
@@ -257,6 +269,7 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
     if (graph->hubTreeCount)
         fillHubSlotRecords(*graph, ws->nodeRecords, ws->hubSlotRecordBegin, ws->hubSlotOrder, ws->hubSlotRecords);
     if (graph->hubTreeCount) fillHubPatchReach(*graph, ws->hubPatchReach);
+    if (graph->hubTreeCount) fillHubInnerRows(*graph, ws->hubInnerRowOfSlot);
     ws->searchMode = VG_SEARCH_HUB_LABELS;
     *out_workspace = ws;
     return VG_OK;

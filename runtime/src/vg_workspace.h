@@ -244,6 +244,8 @@ struct vg_workspace {
                                    //     (slotRecordField; all three filled at init),
     vg::HubBlockRef* hubBlocks;    // ... and the blocks of the common tree path a query reads,
     float* hubPatchReach;          // ... per second-layer patch its longest node edge (filled at init)
+    uint32_t* hubInnerRowOfSlot;   // ... per node slot of a second-layer patch its node's inner row in
+                                   //     the patch's first-layer patch, kNone if none (filled at init)
 };
 
 namespace vg {

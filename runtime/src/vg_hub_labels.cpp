@@ -575,35 +575,44 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
         Frontier& B = ws.backward;
         uint32_t* met = ws.patchNodeSlot;  // the nodes labelled from both sides
         uint32_t metCount = 0;
+        bool everyMet = true;  // every labelled node is in met (so each gets its own turn)
         auto label = [&](uint32_t u, float fromT, uint32_t r) {
             if (!B.labelled(u)) {
                 if (r == kNone) return;
                 F.label[u] = Label{distanceOf(meetStepsOn(g, w, innerRowData(g, first, r), fp.slotCount)), gen};
                 B.label[u] = Label{fromT, gen};
                 if (metCount < kMaxPatchSlots) met[metCount++] = u;
+                else everyMet = false;
             } else if (fromT < B.label[u].dist) {
                 B.label[u].dist = fromT;
             }
         };
         if (b.node != kNone && nodeActive(g, b.node)) label(b.node, 0.0f, innerRow(g, first, b.node));
         forEachRowNode(g, ws, t, label);
-        // Meetings at a node, and across a mesh edge between two of them (vg_distance.cpp).
+        // Meetings at a node, then across a mesh edge between two of them (vg_distance.cpp).
+        for (uint32_t i = 0; i < metCount; ++i) {
+            const float via = F.label[met[i]].dist + B.label[met[i]].dist;
+            if (via < best) best = via;
+        }
         // A crossing undercuts the better of its two node paths by less than its edge, at
-        // most `reach` (kUpperSlack's comment): an edge whose node paths both exceed the
-        // best answer so far by more than that (and a margin for the unfolding's float
-        // error) cannot lower it, and is not unfolded.
-        const float skipAbove = prune ? kCrossingMargin : __builtin_inff();
+        // most `reach` (kUpperSlack's comment). So only edges at a node whose path is within
+        // that of the best meeting (and a margin for the unfolding's float error) are
+        // unfolded, each once, from its lower node id unless only the other end is near.
+        const float margin = prune ? kCrossingMargin : __builtin_inff();
+        const float near = prune && everyMet ? best * kCrossingMargin + reach : __builtin_inff();
         for (uint32_t i = 0; i < metCount; ++i) {
             const uint32_t v = met[i];
             const float fv = F.label[v].dist, bv = B.label[v].dist;
-            if (fv + bv < best) best = fv + bv;
+            if (!(fv + bv <= near)) continue;
             for (uint32_t e = g.nodeEdgeBegin[v]; e < g.nodeEdgeBegin[v + 1]; ++e) {
                 const uint32_t x = g.nodeEdge[e];
                 if (!B.labelled(x)) continue;
-                const float viaX = F.label[x].dist + B.label[x].dist, nodePath = fv + bv < viaX ? fv + bv : viaX;
-                if (nodePath - reach > best * skipAbove) continue;
-                const float d = crossing(fv, F.label[x].dist, bv, B.label[x].dist,
-                                         euclidean(g, g.nodeVertex[v], g.nodeVertex[x]));
+                const float fx = F.label[x].dist, bx = B.label[x].dist;
+                if (x < v && fx + bx <= near) continue;  // x's own turn unfolds it
+                const float nodePath = fv + bv < fx + bx ? fv + bv : fx + bx;
+                if (nodePath - reach > best * margin) continue;
+                const float l = euclidean(g, g.nodeVertex[v], g.nodeVertex[x]);
+                const float d = v < x ? crossing(fv, fx, bv, bx, l) : crossing(fx, fv, bx, bv, l);
                 if (d < best) best = d;
             }
         }

@@ -5,12 +5,13 @@
 # memory (2 threads), bytes per vertex, golden-pair error of the fast mode and of the
 # thesis's bidirectional search, and `vorogeo bench --runtime-only` on random pairs (the
 # fast mode and the thesis's search taking turns on every pair) for two seeds.
-# usage: scripts/bench-issue7.sh [SHARED_DIR] [MESH_NAME]   (KEEP=dir keeps the blobs)
+# usage: scripts/bench-issue7.sh [SHARED_DIR] [MESH_NAME]   (KEEP=dir keeps the blobs; VOROGEO=path
+# runs another build of the tool)
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 shared="${1:-$here/../shared}"
 name="${2:-igea}"
-tool="$here/build/tools/vorogeo"
+tool="${VOROGEO:-$here/build/tools/vorogeo}"
 mesh="$shared/meshes/$name.ply"
 golden="$shared/golden/$name.pairs.csv"
 [ -f "$mesh" ] && [ -f "$golden" ] || { echo "bench-issue7: $mesh or $golden not found (the shared meshes and golden pairs are needed)"; exit 1; }

@@ -15,6 +15,7 @@
 #include "generators.h"
 #include "runtime_graph.h"
 #include "vg_hub_labels.h"
+#include "vg_lower_bound.h"
 #include "vorogeo.h"
 #include "vorogeo_container.h"
 #include "vorogeo_generated.h"
@@ -116,6 +117,51 @@ TEST_CASE("hub labels: the pruned reads answer like reading every label", "[hub]
         }
         CHECK(answered > 1500);
         CHECK(differ == 0);
+    }
+}
+
+TEST_CASE("hub labels: an endpoint's landmark distances through its patch's first-layer nodes", "[hub]") {
+    // A label query takes an endpoint's landmark distances from its inner distances to its
+    // first-layer patch's nodes and their landmark distances: the searches' values (from the
+    // row nodes) up to the slack it declares, and no bound (+inf) for a landmark inside the
+    // patch, where a path need not pass those nodes.
+    for (const double delta : {0.0, 0.002}) {
+        const std::vector<uint8_t> blob = delta == 0.0 ? labelledBlob() : bakeLabelled(false, 0, delta);
+        RuntimeGraph g = openOrFail(blob);
+        const vg_graph& graph = *g.graph();
+        REQUIRE(graph.landmarkCount > 1);
+        RuntimeWorkspace ws(g.graph());
+        size_t throughSlots = 0, inside = 0, compared = 0;
+        for (uint32_t x = 0; x < vg_vertex_count(g.graph()); x += 7) {
+            float fromLabels[vg::kMaxLandmarks], fromRows[vg::kMaxLandmarks];
+            const float slack = vg::hubEndpointLandmarks(graph, *ws.get(), x, fromLabels);
+            if (slack < 0.0f) continue;
+            vg::landmarkDistances(graph, x, fromRows);
+            if (slack == 0.0f) {  // a hub, or a patch with nodes merged away: the row nodes' values
+                for (uint32_t k = 0; k < graph.landmarkCount; ++k) CHECK(fromLabels[k] == fromRows[k]);
+                continue;
+            }
+            ++throughSlots;
+            const uint32_t first = graph.second[graph.vertexPatch[x]].parent;
+            for (uint32_t k = 0; k < graph.landmarkCount; ++k) {
+                bool landmarkInside = false;
+                vg::forEachPatchOf(graph, graph.landmarkVertex[k], [&](uint32_t patch, uint32_t) {
+                    landmarkInside |= graph.second[patch].parent == first;
+                });
+                if (landmarkInside) {
+                    CHECK(fromLabels[k] == __builtin_inff());
+                    ++inside;
+                    continue;
+                }
+                REQUIRE(std::isfinite(fromRows[k]));
+                CHECK(std::fabs(fromLabels[k] - fromRows[k]) <= slack + graph.landmarkScale[k] + 1e-5f * fromRows[k]);
+                ++compared;
+            }
+        }
+        CHECK(throughSlots > 100);
+        CHECK(inside > 0);
+        CHECK(compared > 1000);
+        if (delta > 0.0) WARN(throughSlots << " endpoints through slots on the pruned graph");
     }
 }
 

@@ -70,6 +70,7 @@ struct vg_graph {
     const uint32_t* nodeEdge;        // neighbour nodes joined by a mesh edge
     uint32_t landmarkCount;          // K, at most kMaxLandmarks
     const float* landmarkScale;      // K
+    const uint32_t* landmarkVertex;  // K mesh vertices
     const uint16_t* nodeLandmarks;   // N x K, node-major; kLandmarkUnreachable = no path
     const vg::Patch* second;
     const vg::Patch* first;

@@ -337,10 +337,69 @@ constexpr float kCrossingMargin = 1.001f;
 struct EndpointBounds {
     const float* position;
     float landmarks[kMaxLandmarks];
+    float slack;  // how far a landmark distance may be off beyond the landmark tables' rounding
 };
 
-void endpointBounds(const vg_graph& g, uint32_t x, EndpointBounds& b) {
+// x's landmark distances through the first-layer nodes of its patch: x's distance to each
+// (v, in label steps) plus its landmark distance, the best. Every path to a landmark
+// outside the patch leaves it through one of them, so that is x's distance to the
+// landmark, up to rounding; a landmark inside the patch gets +inf (no bound). The nodes' records are the exit bounds' (read anyway), where the row nodes'
+// landmark records would be one scattered read each. False, with nothing written, when
+// some first-layer node of the patch is no hub (no record: pruned graphs).
+bool landmarksThroughSlots(const vg_graph& g, const vg_workspace& ws, uint32_t first, const uint16_t* v,
+                           float* out) {
+    const uint64_t stride = 3 + g.landmarkCount;
+    const uint32_t begin = ws.hubSlotRecordBegin[first], end = ws.hubSlotRecordBegin[first + 1];
+    uint32_t hubs = 0;
+    for (uint32_t c = begin; c < end; ++c) hubs += ws.hubSlotOrder[c] != kNone;
+    if (hubs != g.first[first].slotCount) return false;
+    // A group of kRecordLanes candidates at a time, lane by lane (their records lie field by field).
+    float best[kMaxLandmarks][kRecordLanes];
+    for (uint32_t k = 0; k < g.landmarkCount; ++k)
+        for (uint32_t j = 0; j < kRecordLanes; ++j) best[k][j] = __builtin_inff();
+    for (uint32_t c = begin; c < end; c += kRecordLanes) {
+        float d[kRecordLanes];
+        for (uint32_t j = 0; j < kRecordLanes; ++j) {
+            const uint32_t slot = ws.hubSlotOrder[c + j];
+            d[j] = slot == kNone || v[slot] == kNoStep ? __builtin_inff() : float(v[slot]) * g.hubLabelScale;
+        }
+        const float* group = ws.hubSlotRecords + uint64_t(c) * stride;
+        for (uint32_t k = 0; k < g.landmarkCount; ++k) {
+            const float* field = group + (3 + k) * kRecordLanes;
+            for (uint32_t j = 0; j < kRecordLanes; ++j) {
+                const float through = d[j] + field[j];
+                best[k][j] = through < best[k][j] ? through : best[k][j];
+            }
+        }
+    }
+    for (uint32_t k = 0; k < g.landmarkCount; ++k) {
+        out[k] = __builtin_inff();
+        for (uint32_t j = 0; j < kRecordLanes; ++j) out[k] = best[k][j] < out[k] ? best[k][j] : out[k];
+    }
+    for (uint32_t k = 0; k < g.landmarkCount; ++k) {
+        if (g.vertexPatch[g.landmarkVertex[k]] == kNone) continue;  // used by no face: reached by no path
+        forEachPatchOf(g, g.landmarkVertex[k], [&](uint32_t patch, uint32_t) {
+            if (g.second[patch].parent == first) out[k] = __builtin_inff();
+        });
+    }
+    return true;
+}
+
+constexpr float kLandmarkSlackSteps = 4.0f;
+
+// An endpoint's position and landmark distances: through its patch's first-layer nodes
+// when the side is no hub (v: its distances to them), else from its row nodes as the
+// searches do.
+void endpointBounds(const vg_graph& g, const vg_workspace& ws, uint32_t x, const Side& side, const uint16_t* v,
+                    EndpointBounds& b) {
     b.position = g.positions + 3 * uint64_t(x);
+    // The inner rows and the landmark table are rounded apart (label steps, landmark
+    // steps) and computed apart (the baker's Dijkstra inside the patch, the runtime's field
+    // from each landmark): measured at most 2.7 label steps from the row nodes' values (the
+    // test torus; igea 2.2), so four are allowed.
+    b.slack = kLandmarkSlackSteps * g.hubLabelScale;
+    if (side.hub == kNone && landmarksThroughSlots(g, ws, side.first, v, b.landmarks)) return;
+    b.slack = 0.0f;
     landmarkDistances(g, x, b.landmarks);
 }
 
@@ -352,7 +411,7 @@ float blockBoundTo(const vg_graph& g, const float* block, const EndpointBounds& 
         const float lo = block[4 + 2 * k], hi = block[5 + 2 * k], d = x.landmarks[k];
         if (d == __builtin_inff()) continue;
         const float below = lo - d, above = d - hi;
-        const float b = (below > above ? below : above) - 2.0f * g.landmarkScale[k];
+        const float b = (below > above ? below : above) - (2.0f * g.landmarkScale[k] + x.slack);
         if (b > best) best = b;  // an unbounded range (-inf, +inf) never is
     }
     return best > 0.0f ? best : 0.0f;
@@ -425,7 +484,7 @@ uint32_t exitCosts(const vg_graph& g, const vg_workspace& ws, uint32_t first, co
         out = __builtin_inff();
         if (k == kNone || v[k] == kNoStep) continue;
         for (uint64_t f = 0; f < stride; ++f) record[f] = slotRecordField(ws.hubSlotRecords, stride, c, f);
-        const float bound = withLandmarks(g, record, other.landmarks, recordDistance(record, other.position));
+        const float bound = withLandmarks(g, record, other.landmarks, recordDistance(record, other.position), other.slack);
         out = float(v[k]) * g.hubLabelScale + bound * kBoundShrink;
     }
     return likeliestExit(ws, begin, end, cost);
@@ -459,7 +518,7 @@ VG_AVX2_TARGET uint32_t exitCostsAvx2(const vg_graph& g, const vg_workspace& ws,
         for (uint32_t k = 0; k < g.landmarkCount; ++k) {
             const __m256 rk = _mm256_loadu_ps(group + (3 + k) * kRecordLanes);
             const __m256 d = _mm256_sub_ps(_mm256_and_ps(_mm256_sub_ps(rk, _mm256_set1_ps(other.landmarks[k])), absMask),
-                                           _mm256_set1_ps(2.0f * g.landmarkScale[k]));
+                                           _mm256_set1_ps(2.0f * g.landmarkScale[k] + other.slack));
             const __m256 take = _mm256_and_ps(_mm256_cmp_ps(d, best, _CMP_GT_OQ), _mm256_cmp_ps(d, inf, _CMP_NEQ_OQ));
             best = _mm256_blendv_ps(best, d, take);
         }
@@ -495,6 +554,16 @@ uint16_t hubToHub(const vg_graph& g, const vg_workspace& ws, uint32_t a, uint32_
 
 }  // namespace
 
+float hubEndpointLandmarks(const vg_graph& g, vg_workspace& ws, uint32_t x, float* out) {
+    Side side;
+    if (g.hubTreeCount == 0 || g.vertexPatch[x] == kNone || !sideOf(g, x, side)) return -1.0f;
+    if (side.hub == kNone) innerSteps(g, ws, x, side, ws.hubSlotSteps);
+    EndpointBounds b;
+    endpointBounds(g, ws, x, side, ws.hubSlotSteps, b);
+    for (uint32_t k = 0; k < g.landmarkCount; ++k) out[k] = b.landmarks[k];
+    return b.slack;
+}
+
 uint32_t innerRow(const vg_graph& g, uint32_t first, uint32_t node) {
     const uint32_t* nodes = g.hubInnerNode + g.hubInnerBegin[first];
     uint32_t lo = 0, hi = g.hubInnerBegin[first + 1] - g.hubInnerBegin[first];
@@ -523,9 +592,6 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
     // Each side's distance to the first-layer nodes of its patch, the likeliest exits and
     // through them an upper bound of the answer; then only the nodes whose lower bound is
     // within it are read.
-    EndpointBounds boundsS, boundsT;
-    endpointBounds(g, s, boundsS);
-    endpointBounds(g, t, boundsT);
     uint16_t* vS = ws.hubSlotSteps;
     uint16_t* vT = ws.hubTargetSlotSteps;
     const uint32_t slotsS = a.hub == kNone ? g.first[a.first].slotCount : 0;
@@ -533,14 +599,17 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
     float* costT = ws.hubSlotCost + slotsS + kRecordLanes;  // s's candidates pad to a whole group
     uint32_t hubS = a.hub, hubT = b.hub;
     uint16_t baseS = 0, baseT = 0;
+    if (a.hub == kNone) innerSteps(g, ws, s, a, vS);
+    if (b.hub == kNone) innerSteps(g, ws, t, b, vT);
+    EndpointBounds boundsS, boundsT;
+    endpointBounds(g, ws, s, a, vS, boundsS);
+    endpointBounds(g, ws, t, b, vT, boundsT);
     if (a.hub == kNone) {
-        innerSteps(g, ws, s, a, vS);
         const uint32_t k = exitCostsOn(g, ws, a.first, vS, boundsT, costS);
         hubS = k == kNone ? kNone : g.nodeHub[g.slots[g.first[a.first].slotBegin + k]];
         baseS = k == kNone ? kNoStep : vS[k];
     }
     if (b.hub == kNone) {
-        innerSteps(g, ws, t, b, vT);
         const uint32_t k = exitCostsOn(g, ws, b.first, vT, boundsS, costT);
         hubT = k == kNone ? kNone : g.nodeHub[g.slots[g.first[b.first].slotBegin + k]];
         baseT = k == kNone ? kNoStep : vT[k];

@@ -19,6 +19,13 @@ namespace vg {
 bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance, float* out,
                  bool prune = true);
 
+// Vertex x's landmark distances as a label query takes them (through its first-layer
+// patch's nodes, +inf for a landmark inside that patch; from its row nodes when x is a hub
+// or its patch has nodes without labels) into out[landmarkCount], and how far each may be
+// off beyond the landmark tables' rounding; -1 when the labels do not answer for x. For
+// the tests.
+float hubEndpointLandmarks(const vg_graph& g, vg_workspace& ws, uint32_t x, float* out);
+
 // Row of `node` among the inner rows of first-layer patch `first` (binary search of its
 // sorted node list), kNone if absent.
 uint32_t innerRow(const vg_graph& g, uint32_t first, uint32_t node);

@@ -78,13 +78,15 @@ inline float recordDistance(const float* record, const float* xPosition) {
 }
 
 // The best of `straight` (a lower bound of d(node, x)) and the landmark bounds from the
-// node's record and x's landmark distances.
-inline float withLandmarks(const vg_graph& g, const float* record, const float* xLandmarks, float straight) {
+// node's record and x's landmark distances (each within `slack` beyond the tables' own
+// rounding, which two landmark steps cover).
+inline float withLandmarks(const vg_graph& g, const float* record, const float* xLandmarks, float straight,
+                           float slack = 0.0f) {
     float best = straight;
     for (uint32_t k = 0; k < g.landmarkCount; ++k) {
         // +inf on either side (no landmark path) gives inf - inf or an infinite
         // difference; neither passes the comparison below as a finite bound.
-        const float d = __builtin_fabsf(record[3 + k] - xLandmarks[k]) - 2.0f * g.landmarkScale[k];
+        const float d = __builtin_fabsf(record[3 + k] - xLandmarks[k]) - (2.0f * g.landmarkScale[k] + slack);
         if (d > best && d != __builtin_inff()) best = d;
     }
     return best;

@@ -278,6 +278,7 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& 
         return VG_ERR_CORRUPT_CONTENT;
     out.landmarkCount = uint32_t(K);
     out.landmarkScale = raw(g->landmark_scale());
+    out.landmarkVertex = raw(g->landmark_vertex());
     out.nodeLandmarks = raw(g->node_landmarks());
     out.second = rawStructs<Patch>(g->second_patches());
     out.first = rawStructs<Patch>(g->first_patches());

@@ -191,6 +191,14 @@ uint16_t lanesMinimum(const uint16_t* lanes) {
     return best;
 }
 
+// Whether no path within the upper bound passes block r, whose nearest hub the source
+// reaches in `nearest` steps (kNoStep: none): the target side then reads none of its rows.
+// The source's distances come from its exits within the bound, so a path through a hub
+// past them is longer than the bound too.
+inline bool outOfRoom(const vg_graph& g, const HubBlockRef& r, uint16_t nearest) {
+    return nearest == kNoStep || float(nearest) * g.hubLabelScale > r.targetRoom;
+}
+
 // The label kernels over column blocks (16 lanes: one block's hubs). Each block r of the
 // common path has one row per hub of its tree node's subtree; an exit e's row is
 // columns + r.base + (e.hub - r.lo) * kHubBlock, for r.lo <= e.hub < r.hi.
@@ -202,7 +210,7 @@ uint32_t blocksOf(const HubTreeNode& node) { return (node.hubCount + kHubBlock -
 // Block b of tree node x: its matrix has a row per hub of x's subtree.
 HubBlockRef blockRef(const vg_graph& g, const vg_workspace& ws, uint32_t x, uint32_t b) {
     const uint32_t lo = g.hubTree[x].hubBegin, hi = ws.hubSubtreeEnd[x];
-    return HubBlockRef{g.hubColumnBegin[x] + uint64_t(b) * kHubBlock * (hi - lo), lo, hi};
+    return HubBlockRef{g.hubColumnBegin[x] + uint64_t(b) * kHubBlock * (hi - lo), lo, hi, __builtin_inff()};
 }
 
 // d[16 i + j]: the source's distance to hub j of block i, the best over its exits (the
@@ -224,6 +232,7 @@ void targetColumns(const vg_graph& g, const uint16_t* d, const HubExit* exits, u
     for (uint64_t k = 0; k < uint64_t(exitCount) * kHubBlock; ++k) acc[k] = kNoStep;
     for (uint32_t i = 0; i < blockCount; ++i) {
         const uint16_t* di = d + uint64_t(i) * kHubBlock;
+        if (outOfRoom(g, blocks[i], lanesMinimum(di))) continue;
         for (uint32_t e = 0; e < exitCount; ++e) {
             if (!inBlock(blocks[i], exits[e].hub)) continue;
             const uint16_t* row = columnRow(g, blocks[i], exits[e].hub);
@@ -264,7 +273,8 @@ VG_AVX2_TARGET void targetColumnsAvx2(const vg_graph& g, const uint16_t* d, cons
     for (uint32_t i = 0; i < blockCount; ++i) {
         const HubBlockRef r = blocks[i];
         const __m256i di = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(d + uint64_t(i) * kHubBlock));
-        if (_mm256_movemask_epi8(_mm256_cmpeq_epi16(di, none)) == -1) continue;  // no hub of it reached
+        const __m128i half = _mm_min_epu16(_mm256_castsi256_si128(di), _mm256_extracti128_si256(di, 1));
+        if (outOfRoom(g, r, uint16_t(_mm_cvtsi128_si32(_mm_minpos_epu16(half))))) continue;
         if (i + 1 < blockCount) prefetchRows(g, blocks[i + 1], exits, exitCount);
         for (uint32_t e = 0; e < exitCount; ++e) {
             if (!inBlock(r, exits[e].hub)) continue;
@@ -430,11 +440,14 @@ uint32_t pathBlocks(const vg_graph& g, vg_workspace& ws, uint32_t lca, const End
     // end: the matrices are then read in the order they lie in.
     for (uint32_t x = lca; x != kNone; x = g.hubTree[x].parent) {
         for (uint32_t b = blocksOf(g.hubTree[x]); b-- > 0;) {
+            HubBlockRef r = blockRef(g, ws, x, b);
             if (bounded) {
                 const float* block = g.hubBlockBounds + uint64_t(ws.hubBlockBegin[x] + b) * stride;
-                if ((blockBoundTo(g, block, bs) + blockBoundTo(g, block, bt)) * kBoundShrink > upper) continue;
+                const float toT = blockBoundTo(g, block, bt) * kBoundShrink;
+                if (blockBoundTo(g, block, bs) * kBoundShrink + toT > upper) continue;
+                r.targetRoom = upper - toT;
             }
-            out[count++] = blockRef(g, ws, x, b);
+            out[count++] = r;
         }
     }
     for (uint32_t i = 0, j = count; i + 1 < j; ++i, --j) {

@@ -59,6 +59,9 @@ inline void heapSiftDown(HeapEntry* heap, uint32_t size, uint32_t i, HeapEntry e
 struct HubBlockRef {
     uint64_t base;
     uint32_t lo, hi;
+    // The most a query's target side may add to the source's distance to one of the
+    // block's hubs and still stay within the upper bound (+inf: read the block whatever it is).
+    float targetRoom;
 };
 // A first-layer node through which a query endpoint enters the labels: its hub, its slot
 // in the endpoint's first-layer patch, and the endpoint's distance to it in label steps.

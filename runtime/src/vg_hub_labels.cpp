@@ -353,9 +353,10 @@ struct EndpointBounds {
 // x's landmark distances through the first-layer nodes of its patch: x's distance to each
 // (v, in label steps) plus its landmark distance, the best. Every path to a landmark
 // outside the patch leaves it through one of them, so that is x's distance to the
-// landmark, up to rounding; a landmark inside the patch gets +inf (no bound). The nodes' records are the exit bounds' (read anyway), where the row nodes'
-// landmark records would be one scattered read each. False, with nothing written, when
-// some first-layer node of the patch is no hub (no record: pruned graphs).
+// landmark, up to rounding; a landmark inside the patch gets +inf (no bound). The nodes'
+// records are the exit bounds' (read anyway), where the row nodes' landmark records would
+// be one scattered read each. False, with nothing written, when some first-layer node of
+// the patch is no hub (no record: pruned graphs).
 bool landmarksThroughSlots(const vg_graph& g, const vg_workspace& ws, uint32_t first, const uint16_t* v,
                            float* out) {
     const uint64_t stride = 3 + g.landmarkCount;
@@ -395,6 +396,11 @@ bool landmarksThroughSlots(const vg_graph& g, const vg_workspace& ws, uint32_t f
     return true;
 }
 
+// How far landmark distances through the first-layer nodes may be off, in label steps. The
+// inner rows and the landmark table are rounded apart (label steps, landmark steps) and
+// computed apart (the baker's Dijkstra inside the patch, the runtime's field from each
+// landmark): measured at most 2.7 label steps from the row nodes' values (the test torus;
+// igea 2.2), so four are allowed.
 constexpr float kLandmarkSlackSteps = 4.0f;
 
 // An endpoint's position and landmark distances: through its patch's first-layer nodes
@@ -403,12 +409,10 @@ constexpr float kLandmarkSlackSteps = 4.0f;
 void endpointBounds(const vg_graph& g, const vg_workspace& ws, uint32_t x, const Side& side, const uint16_t* v,
                     EndpointBounds& b) {
     b.position = g.positions + 3 * uint64_t(x);
-    // The inner rows and the landmark table are rounded apart (label steps, landmark
-    // steps) and computed apart (the baker's Dijkstra inside the patch, the runtime's field
-    // from each landmark): measured at most 2.7 label steps from the row nodes' values (the
-    // test torus; igea 2.2), so four are allowed.
-    b.slack = kLandmarkSlackSteps * g.hubLabelScale;
-    if (side.hub == kNone && landmarksThroughSlots(g, ws, side.first, v, b.landmarks)) return;
+    if (side.hub == kNone && landmarksThroughSlots(g, ws, side.first, v, b.landmarks)) {
+        b.slack = kLandmarkSlackSteps * g.hubLabelScale;
+        return;
+    }
     b.slack = 0.0f;
     landmarkDistances(g, x, b.landmarks);
 }
@@ -690,7 +694,7 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
                 const uint32_t x = g.nodeEdge[e];
                 if (!B.labelled(x)) continue;
                 const float fx = F.label[x].dist, bx = B.label[x].dist;
-                if (x < v && fx + bx <= near) continue;  // x's own turn unfolds it
+                if (everyMet && x < v && fx + bx <= near) continue;  // x's own turn unfolds it
                 const float nodePath = fv + bv < fx + bx ? fv + bv : fx + bx;
                 if (nodePath - reach > best * margin) continue;
                 const float l = euclidean(g, g.nodeVertex[v], g.nodeVertex[x]);

@@ -266,10 +266,11 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
     fillHubBlockBegin(*graph, ws->hubBlockBegin);
     for (uint32_t t = 0; t < graph->hubTreeCount; ++t)
         ws->hubSubtreeEnd[t] = vg::hubSubtreeEnd(graph->hubTree, graph->hubTreeCount, graph->hubCount, t);
-    if (graph->hubTreeCount)
+    if (graph->hubTreeCount) {
         fillHubSlotRecords(*graph, ws->nodeRecords, ws->hubSlotRecordBegin, ws->hubSlotOrder, ws->hubSlotRecords);
-    if (graph->hubTreeCount) fillHubPatchReach(*graph, ws->hubPatchReach);
-    if (graph->hubTreeCount) fillHubInnerRows(*graph, ws->hubInnerRowOfSlot);
+        fillHubPatchReach(*graph, ws->hubPatchReach);
+        fillHubInnerRows(*graph, ws->hubInnerRowOfSlot);
+    }
     ws->searchMode = VG_SEARCH_HUB_LABELS;
     *out_workspace = ws;
     return VG_OK;

@@ -1,10 +1,11 @@
-/* The vorogeo blob container (format version 7), shared by the baker and the runtime.
+/* The vorogeo blob container (format version 8), shared by the baker and the runtime.
  *
  *   offset  size  field
  *        0     8  magic "VOROGEO\0"
  *        8     4  format version (little-endian uint32) = VG_FORMAT_VERSION
  *       12     4  flags: bit 0 = payload is one zstd frame; bit 1 = the flatbuffer's distance
- *                  matrices are prediction-coded (vorogeo_distance_coding.h); other bits 0
+ *                  matrices (vorogeo_distance_coding.h) and hub-label tables
+ *                  (vorogeo_label_coding.h) are prediction-coded; other bits 0
  *       16     8  payload size in bytes (what follows the header)
  *       24     8  flatbuffer size in bytes (payload size when not compressed)
  *       32     8  checksum of the payload bytes (vg_checksum64 below)
@@ -21,7 +22,7 @@
 
 #define VG_CONTAINER_MAGIC "VOROGEO"
 #define VG_CONTAINER_HEADER_SIZE 40u
-#define VG_FORMAT_VERSION 7u
+#define VG_FORMAT_VERSION 8u
 #define VG_FLAG_ZSTD 1u
 #define VG_FLAG_CODED_DISTANCES 2u
 

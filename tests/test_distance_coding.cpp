@@ -17,10 +17,14 @@
 #include "generators.h"
 #include "runtime_graph.h"
 #include "vg_decode.h"
+#include "vg_decode_labels.h"
 #include "vg_field_kernels.h"
 #include "vg_graph.h"
 #include "vorogeo_container.h"
 #include "vorogeo_distance_coding.h"
+#include "vorogeo_label_coding.h"
+
+#include <zstd.h>
 
 using namespace vorogeo;
 
@@ -271,4 +275,119 @@ TEST_CASE("distance coding: --compact needs compression", "[runtime][coding]") {
     BakeReport report;
     REQUIRE_THROWS_WITH(bakeMesh(planeGrid(6, 6, 1.0), o, report, nullptr),
                         Catch::Contains("--compact") && Catch::Contains("--no-compress"));
+}
+
+// Hub-label tables (schema/vorogeo_label_coding.h).
+TEST_CASE("label coding: decode(encode(x)) = x for any steps, shapes and sites, in the reference and the runtime",
+          "[runtime][coding]") {
+    std::mt19937 rng(11);
+    std::vector<float> positions;
+    for (int v = 0; v < 3 * 50; ++v) positions.push_back(randomCoordinate(rng));
+    std::vector<uint32_t> nodeVertex, nodes;
+    for (uint32_t n = 0; n < 25; ++n) nodeVertex.push_back(rng() % 50);
+    for (int i = 0; i < 200; ++i) nodes.push_back(rng() % 25);
+    std::vector<int32_t> detours(2 * 200);
+    std::vector<unsigned char> planes(2 * VG_LABEL_CHUNK);
+    std::vector<uint8_t> scratchBytes(vg::labelDecodeScratchSize() + 16);
+    void* scratch = scratchBytes.data() + (16 - reinterpret_cast<uintptr_t>(scratchBytes.data()) % 16) % 16;
+    for (int trial = 0; trial < 300; ++trial) {
+        const uint32_t rows = rng() % 40, cols = 1 + rng() % 60;
+        std::vector<uint16_t> plain(uint64_t(rows) * cols + 7);
+        const uint32_t markerOdds = trial % 3 == 0 ? 5 : (trial % 3 == 1 ? 500 : 1u << 30);  // rows with and without
+        for (uint16_t& x : plain) {
+            if (rng() % markerOdds != 0) {
+                x = uint16_t(rng() % 8 ? 30000 + rng() % 200 : rng() % 65535);  // mostly smooth, some jumps
+                continue;
+            }
+            switch (rng() % 5) {
+                case 0: x = uint16_t(VG_LABEL_NO_PATH); break;
+                case 1: x = uint16_t(rng() % 3 ? 65534 : 0); break;
+                default: x = uint16_t(rng() % 65535);
+            }
+        }
+        const float scale = trial % 7 == 0 ? 0.0f : randomScale(rng);
+        const vg_label_sites sites{positions.data(), nodeVertex.data(), nodes.data() + rng() % 100,
+                                   nodes.data() + rng() % 100, 1.0f / scale};
+        const vg_label_sites* s = trial % 2 ? &sites : nullptr;
+        std::vector<uint16_t> coded = plain;
+        vg_code_label_table(plain.data(), coded.data(), 7, rows, cols, s, detours.data(), 0);
+        for (uint64_t i = 0; i < 7; ++i) REQUIRE(coded[i] == plain[i]);  // outside the table: untouched
+        std::vector<uint16_t> split = coded;
+        vg_label_planes(reinterpret_cast<unsigned char*>(split.data()), split.size(), planes.data(), 1);
+        if (split.size() > 1 && coded != plain) CHECK(split != coded);
+        vg_label_planes(reinterpret_cast<unsigned char*>(split.data()), split.size(), planes.data(), 0);
+        REQUIRE(split == coded);
+        std::vector<uint16_t> fast = coded;  // the runtime's decoder
+        vg_code_label_table(coded.data(), coded.data(), 7, rows, cols, s, detours.data(), 1);
+        REQUIRE(coded == plain);
+        vg::decodeLabelTable(fast.data() + 7, rows, cols, s, scratch);
+        REQUIRE(fast == plain);
+    }
+    // Any codes decode to valid steps (65535 only where the code is 65535).
+    std::vector<uint16_t> codes(64 * 16);
+    for (uint16_t& x : codes) x = uint16_t(rng());
+    const std::vector<uint16_t> before = codes;
+    vg_code_label_table(codes.data(), codes.data(), 0, 64, 16, nullptr, detours.data(), 1);
+    for (size_t i = 0; i < codes.size(); ++i) CHECK((codes[i] == VG_LABEL_NO_PATH) == (before[i] == VG_LABEL_NO_PATH));
+    // Smooth tables code to small residuals: a plane of steps codes to zeros past the first
+    // row and column.
+    std::vector<uint16_t> ramp(20 * 16), rampCoded(20 * 16);
+    for (uint32_t r = 0; r < 20; ++r)
+        for (uint32_t c = 0; c < 16; ++c) ramp[r * 16 + c] = uint16_t(1000 + 37 * r + 11 * c);
+    vg_code_label_table(ramp.data(), rampCoded.data(), 0, 20, 16, nullptr, detours.data(), 0);
+    for (uint32_t r = 1; r < 20; ++r)
+        for (uint32_t c = 1; c < 16; ++c) CHECK(rampCoded[r * 16 + c] == 0);
+}
+
+TEST_CASE("label coding: a compact blob's hub labels are coded, smaller, and open to the same steps and answers",
+          "[runtime][coding][hub]") {
+    const Mesh mesh = bumpyTorus(60, 30);
+    auto bake = [&](bool compact) {
+        BakeOptions o;
+        o.n1 = 12;
+        o.hubLabels = true;
+        o.compress = true;
+        o.compact = compact;
+        BakeReport report;
+        return bakeMesh(mesh, o, report, nullptr);
+    };
+    const std::vector<uint8_t> coded = bake(true), zstd = bake(false);
+    std::string error;
+    tools::BlobContents a, b;
+    REQUIRE(tools::unpackBlob(coded, a, error));
+    REQUIRE(tools::unpackBlob(zstd, b, error));
+    REQUIRE(a.graph()->hub_tree()->size() > 1);
+    REQUIRE(a.flatbuffer == b.flatbuffer);  // the tools' decoder
+
+    // What the coding does to the label tables alone: zstd of the plain and the coded arrays.
+    auto zstdSize = [](const flatbuffers::Vector<uint16_t>* v) {
+        std::vector<uint8_t> out(ZSTD_compressBound(v->size() * 2));
+        return ZSTD_compress(out.data(), out.size(), v->data(), v->size() * 2, 9);
+    };
+    std::vector<uint8_t> recoded = b.flatbuffer;
+    codeDistances(recoded);
+    const fb::Graph* c = fb::GetGraph(recoded.data());
+    const size_t plainBytes = zstdSize(b.graph()->hub_columns()) + zstdSize(b.graph()->hub_inner());
+    const size_t codedBytes = zstdSize(c->hub_columns()) + zstdSize(c->hub_inner());
+    INFO("label tables, zstd: plain " << plainBytes << " bytes, coded " << codedBytes);
+    CHECK(codedBytes * 4 < plainBytes * 3);  // this torus: 1.5x; igea: 3.4x
+
+    tools::RuntimeGraph want, got;
+    REQUIRE(want.open(zstd, error));
+    REQUIRE(got.open(coded, error));
+    const vg_graph& w = *want.graph();
+    const vg_graph& g = *got.graph();
+    REQUIRE(g.hubTreeCount == w.hubTreeCount);
+    REQUIRE(std::memcmp(g.hubColumns, w.hubColumns, w.hubColumnBegin[w.hubTreeCount] * 2) == 0);
+    REQUIRE(std::memcmp(g.hubInner, w.hubInner, w.hubInnerMatrixBegin[w.firstCount] * 2) == 0);
+    tools::RuntimeWorkspace wa(want), wb(got);
+    const uint32_t V = vg_vertex_count(want.graph());
+    std::mt19937 rng(5);
+    for (int i = 0; i < 300; ++i) {
+        const uint32_t s = rng() % V, t = rng() % V;
+        float da = 0, db = 0;
+        REQUIRE(vg_distance(want.graph(), wa.get(), s, t, &da) == VG_OK);
+        REQUIRE(vg_distance(got.graph(), wb.get(), s, t, &db) == VG_OK);
+        REQUIRE(std::memcmp(&da, &db, sizeof da) == 0);
+    }
 }

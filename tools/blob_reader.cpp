@@ -8,10 +8,81 @@
 
 #include "vorogeo_container.h"
 #include "vorogeo_distance_coding.h"
+#include "vorogeo_label_coding.h"
 
 namespace vorogeo::tools {
 
 namespace {
+
+// Decodes the hub-label tables in place (schema/vorogeo_label_coding.h), when there are
+// labels, after checking the table ranges the decoder reads (the first-layer slots and the
+// nodes' vertices are checked by decodeDistances before).
+bool decodeLabels(std::vector<uint8_t>& flatbuffer, std::string& error) {
+    const fb::Graph* g = fb::GetGraph(flatbuffer.data());
+    const auto* tree = g->hub_tree();
+    if (!tree || tree->size() == 0) return true;
+    const uint64_t T = tree->size(), S1 = g->first_patches()->size(), nodes = g->node_vertex()->size();
+    if (!g->hub_column_begin() || !g->hub_columns() || !g->hub_inner_begin() || !g->hub_inner_node() ||
+        !g->hub_inner_matrix_begin() || !g->hub_inner() || g->hub_column_begin()->size() != T + 1 ||
+        g->hub_inner_begin()->size() != S1 + 1 || g->hub_inner_matrix_begin()->size() != S1 + 1) {
+        error = "coded hub labels without the tables they are decoded into";
+        return false;
+    }
+    auto valuesOf = [&](const flatbuffers::Vector<uint16_t>* v) {
+        return reinterpret_cast<uint16_t*>(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(v->data()) - flatbuffer.data()));
+    };
+    std::vector<int32_t> detours(2 * 65536);
+    std::vector<unsigned char> planes(2 * VG_LABEL_CHUNK);
+
+    uint16_t* columns = valuesOf(g->hub_columns());
+    const uint64_t columnCount = g->hub_columns()->size();
+    for (uint64_t t = 0; t < T; ++t) {
+        const uint64_t begin = g->hub_column_begin()->Get(t), end = g->hub_column_begin()->Get(t + 1);
+        const uint64_t blocks = (uint64_t(tree->Get(t)->hub_count()) + 15) / 16;
+        if (begin > end || end > columnCount || (blocks == 0 ? end != begin : (end - begin) % (16 * blocks) != 0) ||
+            (end - begin) / 16 > 0xFFFFFFFFu) {
+            error = "a hub tree node's label blocks lie outside hub_columns";
+            return false;
+        }
+    }
+    vg_label_planes(reinterpret_cast<unsigned char*>(columns), columnCount, planes.data(), 0);
+    for (uint64_t t = 0; t < T; ++t) {
+        const uint64_t begin = g->hub_column_begin()->Get(t), end = g->hub_column_begin()->Get(t + 1);
+        const uint64_t blocks = (uint64_t(tree->Get(t)->hub_count()) + 15) / 16;
+        if (blocks == 0) continue;
+        const uint64_t rows = (end - begin) / (16 * blocks);
+        for (uint64_t k = 0; k < blocks; ++k)
+            vg_code_label_table(columns, columns, begin + k * rows * 16, uint32_t(rows), 16, nullptr, detours.data(), 1);
+    }
+
+    uint16_t* inner = valuesOf(g->hub_inner());
+    const uint64_t innerCount = g->hub_inner()->size(), innerNodes = g->hub_inner_node()->size();
+    for (uint64_t p = 0; p < S1; ++p) {
+        const uint64_t r0 = g->hub_inner_begin()->Get(uint32_t(p)), r1 = g->hub_inner_begin()->Get(uint32_t(p + 1));
+        const uint64_t m0 = g->hub_inner_matrix_begin()->Get(uint32_t(p)), m1 = g->hub_inner_matrix_begin()->Get(uint32_t(p + 1));
+        if (r0 > r1 || r1 > innerNodes || m0 > m1 || m1 > innerCount ||
+            m1 - m0 != (r1 - r0) * g->first_patches()->Get(uint32_t(p))->slot_count()) {
+            error = "a first-layer patch's inner table lies outside hub_inner";
+            return false;
+        }
+        for (uint64_t i = r0; i < r1; ++i)
+            if (g->hub_inner_node()->Get(uint32_t(i)) >= nodes) {
+                error = "an inner row's node is out of range";
+                return false;
+            }
+    }
+    vg_label_planes(reinterpret_cast<unsigned char*>(inner), innerCount, planes.data(), 0);
+    const float inverseScale = 1.0f / g->hub_label_scale();
+    for (uint32_t p = 0; p < S1; ++p) {
+        const fb::PatchRecord* patch = g->first_patches()->Get(p);
+        const uint32_t r0 = g->hub_inner_begin()->Get(p);
+        const vg_label_sites sites{g->positions()->data(), g->node_vertex()->data(), g->hub_inner_node()->data() + r0,
+                                   g->slots()->data() + patch->slot_begin(), inverseScale};
+        vg_code_label_table(inner, inner, g->hub_inner_matrix_begin()->Get(p), g->hub_inner_begin()->Get(p + 1) - r0,
+                            patch->slot_count(), &sites, detours.data(), 1);
+    }
+    return true;
+}
 
 // Decodes the distances in place (schema/vorogeo_distance_coding.h) after checking that
 // every patch's slots, slot ids and matrix lie inside their arrays; the runtime checks all
@@ -58,7 +129,7 @@ bool decodeDistances(std::vector<uint8_t>& flatbuffer, std::string& error) {
         return true;
     };
     return decodeLayer(g->second_patches(), g->second_distances(), false) &&
-           decodeLayer(g->first_patches(), g->first_distances(), true);
+           decodeLayer(g->first_patches(), g->first_distances(), true) && decodeLabels(flatbuffer, error);
 }
 
 }  // namespace

@@ -1,11 +1,13 @@
 // vg_open_size / vg_open: container header, checksum, decompression into caller memory
 // (static zstd context), flatbuffers verification, the meaning checks of vg_validate.cpp,
-// then the decoding of prediction-coded distances (vg_decode.h). Nothing is allocated; on
+// then the decoding of prediction-coded distances and hub-label tables (vg_decode.h,
+// vg_decode_labels.h). Nothing is allocated; on
 // failure nothing refers to the memory.
 #include <string.h>
 
 #include "vg_graph.h"
 #include "vg_decode.h"
+#include "vg_decode_labels.h"
 #include "vg_field_kernels.h"
 #include "vg_huge_pages.h"
 #include "vg_validate.h"
@@ -80,6 +82,7 @@ size_t memoryNeeded(const void* blob, const Header& h) {
     if (h.compressed || copied(blob, h)) n += alignUp(size_t(h.flatbufferSize));
     size_t scratch = h.compressed ? decompressionContextSize() : 0;
     if (h.coded && vg::decodeScratchSize() > scratch) scratch = vg::decodeScratchSize();
+    if (h.coded && vg::labelDecodeScratchSize() > scratch) scratch = vg::labelDecodeScratchSize();
     return n + alignUp(scratch);
 }
 
@@ -137,7 +140,10 @@ extern "C" vg_status vg_open(const void* blob, size_t blob_size, void* memory, s
     st = vg::verifyAndBind(flatbuffer, size_t(h.flatbufferSize), *graph);
     if (st != VG_OK) return st;
     const bool avx2 = vg::cpuHasAvx2();
-    if (h.coded) vg::decodeDistances(*graph, avx2, cursor);
+    if (h.coded) {
+        vg::decodeDistances(*graph, avx2, cursor);
+        vg::decodeLabels(*graph, cursor);
+    }
     graph->fileAllocator = vg_allocator{nullptr, nullptr, nullptr};
     graph->fileMemory = nullptr;
     graph->fileMapping = nullptr;

@@ -75,8 +75,12 @@ int main(int argc, char** argv) {
         {  // hub labels: several first-layer patches, as a file and as a bare flatbuffer
             const std::vector<uint8_t> blob = bakeSmall(planeGrid(9, 9, 1.0, 0.1, 3), 2, false, 4);
             writeSeed(blobs / "hubs-file", 0, blob);
-            writeSeed(blobs / "hubs-flatbuffer", 1,
-                      std::vector<uint8_t>(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end()));
+            const std::vector<uint8_t> flatbuffer(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end());
+            writeSeed(blobs / "hubs-flatbuffer", 1, flatbuffer);
+            std::vector<uint8_t> coded = flatbuffer;  // distances and label tables coded
+            codeDistances(coded);
+            writeSeed(blobs / "hubs-coded-zstd", 3, coded);
+            writeSeed(blobs / "hubs-coded", 4, coded);
         }
         Mesh pair = planeGrid(3, 3, 1.0);
         const Mesh other = planeGrid(2, 2, 1.0);

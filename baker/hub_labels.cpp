@@ -35,51 +35,84 @@ struct View {
     uint32_t secondQuantum(uint64_t k) const { return vg_coding_get(g->second_distances()->data(), k); }
 };
 
-// Dijkstra over node ids with lazily deleted heap entries and stamped labels, reused
-// across runs by one thread.
+// Dijkstra over node ids, reused across runs by one thread. Nodes settle by distance, then
+// node id (what a binary heap of (distance, node) pairs with lazy deletion gives, as
+// before session 26: the same labels bit for bit). Every label is valid at all times
+// (the nodes a run touched are reset at the next begin), so relaxing an edge is one load
+// and one comparison; a settled node is never lowered (lengths are not negative). The
+// queue is an indexed 4-ary heap with one entry per node, lowered in place, instead of
+// one entry per improvement.
 struct Dijkstra {
     std::vector<double> dist;
-    std::vector<uint32_t> via;  // the patch whose row gave the label (kNo: none)
-    std::vector<uint32_t> stamp;
-    std::vector<uint8_t> done;
-    std::vector<std::pair<double, uint32_t>> heap;
-    uint32_t generation = 0;
+    std::vector<uint32_t> via;
+    std::vector<uint32_t> position;  // in heap; kNo: not queued (never, or settled)
+    std::vector<uint32_t> touched;
+    std::vector<uint32_t> heap;
 
     void begin(size_t n) {
         if (dist.size() != n) {
             dist.assign(n, kInf);
             via.assign(n, kNo);
-            stamp.assign(n, 0);
-            done.assign(n, 0);
-            generation = 0;
+            position.assign(n, kNo);
+            touched.clear();
         }
-        ++generation;
+        for (uint32_t u : touched) {
+            dist[u] = kInf;
+            via[u] = kNo;
+            position[u] = kNo;
+        }
+        touched.clear();
         heap.clear();
     }
-    double at(uint32_t v) const { return stamp[v] == generation ? dist[v] : kInf; }
-    void offer(uint32_t v, double d, uint32_t from = kNo) {
-        if (stamp[v] != generation) {
-            stamp[v] = generation;
-            done[v] = 0;
-            dist[v] = kInf;
+    bool before(uint32_t a, uint32_t b) const { return dist[a] < dist[b] || (dist[a] == dist[b] && a < b); }
+    void place(uint32_t i, uint32_t u) {
+        heap[i] = u;
+        position[u] = i;
+    }
+    void up(uint32_t i) {
+        const uint32_t u = heap[i];
+        while (i > 0) {
+            const uint32_t parent = (i - 1) / 4;
+            if (!before(u, heap[parent])) break;
+            place(i, heap[parent]);
+            i = parent;
         }
-        if (done[v] || !(d < dist[v])) return;
-        dist[v] = d;
-        via[v] = from;
-        heap.push_back({d, v});
-        std::push_heap(heap.begin(), heap.end(), std::greater<>());
+        place(i, u);
+    }
+    void offer(uint32_t u, double d, uint32_t from) {
+        if (!(d < dist[u])) return;
+        if (dist[u] == kInf) {
+            touched.push_back(u);
+            heap.push_back(u);
+            position[u] = uint32_t(heap.size() - 1);
+        }
+        dist[u] = d;
+        via[u] = from;
+        up(position[u]);
     }
     // The next node to settle, kNo when none is left.
     uint32_t next() {
-        while (!heap.empty()) {
-            std::pop_heap(heap.begin(), heap.end(), std::greater<>());
-            const uint32_t v = heap.back().second;
-            heap.pop_back();
-            if (done[v]) continue;
-            done[v] = 1;
-            return v;
+        if (heap.empty()) return kNo;
+        const uint32_t top = heap[0], last = heap.back();
+        heap.pop_back();
+        position[top] = kNo;
+        const uint32_t n = uint32_t(heap.size());
+        if (n > 0) {
+            uint32_t i = 0;
+            for (;;) {
+                const uint32_t first = 4 * i + 1;
+                if (first >= n) break;
+                uint32_t best = first;
+                const uint32_t end = first + 4 < n ? first + 4 : n;
+                for (uint32_t c = first + 1; c < end; ++c)
+                    if (before(heap[c], heap[best])) best = c;
+                if (!before(heap[best], last)) break;
+                place(i, heap[best]);
+                i = best;
+            }
+            place(i, last);
         }
-        return kNo;
+        return top;
     }
 };
 
@@ -231,12 +264,12 @@ private:
     std::vector<double> distancesFrom(uint32_t source) {
         Dijkstra dj;
         dj.begin(v_.firstCount);
-        dj.offer(source, 0.0);
+        dj.offer(source, 0.0, kNo);
         for (uint32_t u = dj.next(); u != kNo; u = dj.next())
             for (uint32_t w : adjacency_[u])
-                if (inSet_[w]) dj.offer(w, dj.at(u) + centroidDistance(centroid_, u, w));
+                if (inSet_[w]) dj.offer(w, dj.dist[u] + centroidDistance(centroid_, u, w), kNo);
         std::vector<double> d(v_.firstCount);
-        for (uint32_t p = 0; p < v_.firstCount; ++p) d[p] = dj.at(p);
+        for (uint32_t p = 0; p < v_.firstCount; ++p) d[p] = dj.dist[p];
         return d;
     }
 
@@ -339,6 +372,7 @@ uint16_t steps(double d, double scale) {
     return uint16_t(std::min(65534.0, std::floor(d / scale + 0.5)));
 }
 
+
 // Inner rows of first-layer patch f: Dijkstra inside f's second-layer node graph from
 // each of f's first-layer nodes, as the runtime's search relaxes rows (active nodes only).
 void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children, std::vector<uint32_t>& nodes,
@@ -365,7 +399,7 @@ void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children,
             if (quantum == kNoPath) continue;
             const uint32_t n = v.slot(q.slot_begin() + j);
             if (!v.active(n)) continue;
-            dj.offer(n, du + double(quantum) * double(q.scale()));
+            dj.offer(n, du + double(quantum) * double(q.scale()), kNo);
         }
     };
     // The rows of node n in f's second-layer patches.
@@ -380,10 +414,10 @@ void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children,
     for (uint32_t k = 0; k < K; ++k) {
         const uint32_t b = v.slot(fr.slot_begin() + k);
         dj.begin(v.nodes);
-        if (v.active(b)) dj.offer(b, 0.0);
+        if (v.active(b)) dj.offer(b, 0.0, kNo);
         else relaxNode(b, 0.0);  // merged away: it enters through its rows, as an endpoint does
-        for (uint32_t u = dj.next(); u != kNo; u = dj.next()) relaxNode(u, dj.at(u));
-        for (size_t r = 0; r < nodes.size(); ++r) values[r * K + k] = dj.at(nodes[r]);
+        for (uint32_t u = dj.next(); u != kNo; u = dj.next()) relaxNode(u, dj.dist[u]);
+        for (size_t r = 0; r < nodes.size(); ++r) values[r * K + k] = dj.dist[nodes[r]];
     }
 }
 
@@ -468,30 +502,20 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
         tick();
     });
 
-    // The overlay graph once, as adjacency lists with lengths (every first-layer row of
-    // every node), for the label runs below.
-    std::vector<uint64_t> edgeBegin(size_t(v.nodes) + 1, 0);
-    for (uint32_t u = 0; u < v.nodes; ++u) {
-        uint64_t edges = 0;
-        for (uint32_t m = firstBegin->Get(u); m < firstBegin->Get(u + 1); ++m)
-            edges += v.first(v.g->node_first()->Get(m)->patch()).slot_count();
-        edgeBegin[u + 1] = edgeBegin[u] + edges;
-    }
-    std::vector<uint32_t> edgeTo(edgeBegin.back()), edgePatch(edgeBegin.back());
-    std::vector<double> edgeLength(edgeBegin.back(), kInf);
-    parallelFor(v.nodes, [&](size_t u) {
-        uint64_t e = edgeBegin[u];
-        for (uint32_t m = firstBegin->Get(uint32_t(u)); m < firstBegin->Get(uint32_t(u) + 1); ++m) {
-            const fb::Membership* ms = v.g->node_first()->Get(m);
-            const fb::PatchRecord& p = v.first(ms->patch());
-            const uint64_t row = p.matrix_begin() + uint64_t(ms->slot()) * p.slot_count();
-            for (uint32_t j = 0; j < p.slot_count(); ++j, ++e) {
-                edgeTo[e] = v.slot(p.slot_begin() + j);
-                edgePatch[e] = ms->patch();
-                const uint32_t quantum = v.firstQuantum(row + j);
-                if (j != ms->slot() && quantum != kNoPath) edgeLength[e] = double(quantum) * double(p.scale());
-            }
-        }
+    // The overlay graph once: every first-layer matrix unpacked (quanta, kNoPath kept), its
+    // slots' node ids, and every node's memberships, for the label runs below.
+    std::vector<uint64_t> quantaBegin(size_t(v.firstCount) + 1, 0);
+    for (uint32_t p = 0; p < v.firstCount; ++p)
+        quantaBegin[p + 1] = quantaBegin[p] + uint64_t(v.first(p).slot_count()) * v.first(p).slot_count();
+    std::vector<uint16_t> quanta(quantaBegin.back());
+    std::vector<uint32_t> slotNode(v.g->slots()->size());
+    std::vector<double> patchScale(v.firstCount);
+    parallelFor(v.firstCount, [&](size_t p) {
+        const fb::PatchRecord& r = v.first(uint32_t(p));
+        const uint64_t S = r.slot_count();
+        for (uint64_t k = 0; k < S * S; ++k) quanta[quantaBegin[p] + k] = uint16_t(v.firstQuantum(r.matrix_begin() + k));
+        for (uint64_t j = 0; j < S; ++j) slotNode[r.slot_begin() + j] = v.slot(r.slot_begin() + j);
+        patchScale[p] = double(r.scale());
     });
 
     // Labels: one overlay Dijkstra per hub x, stopped once every hub whose label holds x
@@ -508,19 +532,29 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
                                 local % kHubBlock;
         uint32_t remaining = targetsEnd - targetsBegin;
         dj.begin(v.nodes);
-        dj.offer(hubNode[x], 0.0);
+        dj.offer(hubNode[x], 0.0, kNo);
         for (uint32_t u = dj.next(); u != kNo; u = dj.next()) {
             const uint32_t hu = out.nodeHub[u];
             if (hu != kNo && hu >= targetsBegin && hu < targetsEnd && --remaining == 0) break;
             // Not the row of the patch u was reached through: its matrix holds shortest paths
             // inside the patch already (as the runtime's search skips it).
-            const double du = dj.at(u);
+            const double du = dj.dist[u];
             const uint32_t from = dj.via[u];
-            for (uint64_t e = edgeBegin[u]; e < edgeBegin[u + 1]; ++e)
-                if (edgeLength[e] < kInf && edgePatch[e] != from) dj.offer(edgeTo[e], du + edgeLength[e], edgePatch[e]);
+            for (uint32_t m = firstBegin->Get(u); m < firstBegin->Get(u + 1); ++m) {
+                const fb::Membership* ms = v.g->node_first()->Get(m);
+                const uint32_t p = ms->patch();
+                if (p == from) continue;
+                const fb::PatchRecord& r = v.first(p);
+                const uint32_t S = r.slot_count();
+                const uint16_t* row = quanta.data() + quantaBegin[p] + uint64_t(ms->slot()) * S;
+                const uint32_t* to = slotNode.data() + r.slot_begin();
+                const double scale = patchScale[p];
+                for (uint32_t j = 0; j < S; ++j)
+                    if (row[j] != kNoPath) dj.offer(to[j], du + double(row[j]) * scale, p);
+            }
         }
         for (uint32_t b = targetsBegin; b < targetsEnd; ++b)
-            labelValue[column + uint64_t(b - targetsBegin) * kHubBlock] = dj.at(hubNode[b]);
+            labelValue[column + uint64_t(b - targetsBegin) * kHubBlock] = dj.dist[hubNode[b]];
         tick();
     });
 

@@ -375,6 +375,9 @@ uint16_t steps(double d, double scale) {
 
 // Inner rows of first-layer patch f: Dijkstra inside f's second-layer node graph from
 // each of f's first-layer nodes, as the runtime's search relaxes rows (active nodes only).
+// The runs go over local ids (f's active nodes in increasing id, so ties settle as with
+// global ids) and f's second-layer node blocks unpacked once, in the order the graph
+// lists each node's patches.
 void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children, std::vector<uint32_t>& nodes,
                std::vector<double>& values) {
     nodes.clear();
@@ -390,34 +393,69 @@ void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children,
     const fb::PatchRecord& fr = v.first(f);
     const uint32_t K = fr.slot_count();
     values.assign(nodes.size() * K, kInf);
-    Dijkstra dj;
-    auto relaxRow = [&](const fb::PatchRecord& q, uint32_t i, double du) {
-        const uint64_t row = q.matrix_begin() + uint64_t(i) * q.node_count();
-        for (uint32_t j = 0; j < q.node_count(); ++j) {
-            if (j == i) continue;
-            const uint32_t quantum = v.secondQuantum(row + j);
-            if (quantum == kNoPath) continue;
-            const uint32_t n = v.slot(q.slot_begin() + j);
-            if (!v.active(n)) continue;
-            dj.offer(n, du + double(quantum) * double(q.scale()), kNo);
-        }
+    auto localOf = [&](uint32_t n) {
+        const auto it = std::lower_bound(nodes.begin(), nodes.end(), n);
+        return it != nodes.end() && *it == n ? uint32_t(it - nodes.begin()) : kNo;
     };
-    // The rows of node n in f's second-layer patches.
-    auto relaxNode = [&](uint32_t n, double du) {
+
+    // Per child: its node slots' local ids (kNo: merged away) and its node x node quanta.
+    struct Child {
+        uint32_t slotBegin, nodeCount;
+        uint64_t quantaBegin;
+        double scale;
+    };
+    std::vector<Child> local(children.size());
+    std::vector<uint32_t> slotLocal;
+    std::vector<uint16_t> quanta;
+    for (size_t c = 0; c < children.size(); ++c) {
+        const fb::PatchRecord& q = v.second(children[c]);
+        const uint32_t nq = q.node_count();
+        local[c] = Child{uint32_t(slotLocal.size()), nq, quanta.size(), double(q.scale())};
+        for (uint32_t j = 0; j < nq; ++j) slotLocal.push_back(localOf(v.slot(q.slot_begin() + j)));
+        for (uint64_t k = 0; k < uint64_t(nq) * nq; ++k) quanta.push_back(uint16_t(v.secondQuantum(q.matrix_begin() + k)));
+    }
+    // Per node (local id, or a merged-away first-layer node): its (child, slot) rows.
+    auto membershipsOf = [&](uint32_t n, std::vector<std::pair<uint32_t, uint32_t>>& out) {
         const auto* begin = v.g->node_second_begin();
         for (uint32_t m = begin->Get(n); m < begin->Get(n + 1); ++m) {
             const fb::Membership* ms = v.g->node_second()->Get(m);
-            const fb::PatchRecord& q = v.second(ms->patch());
-            if (q.parent() == f) relaxRow(q, ms->slot(), du);
+            if (v.second(ms->patch()).parent() != f) continue;
+            const size_t c = size_t(std::lower_bound(children.begin(), children.end(), ms->patch()) - children.begin());
+            out.push_back({uint32_t(c), ms->slot()});
         }
     };
+    std::vector<uint32_t> rowsBegin(nodes.size() + 1, 0);
+    std::vector<std::pair<uint32_t, uint32_t>> rows;
+    for (size_t r = 0; r < nodes.size(); ++r) {
+        membershipsOf(nodes[r], rows);
+        rowsBegin[r + 1] = uint32_t(rows.size());
+    }
+
+    Dijkstra dj;
+    auto relaxRow = [&](const std::pair<uint32_t, uint32_t>& row, double du) {
+        const Child& q = local[row.first];
+        const uint32_t i = row.second;
+        const uint16_t* entries = quanta.data() + q.quantaBegin + uint64_t(i) * q.nodeCount;
+        const uint32_t* to = slotLocal.data() + q.slotBegin;
+        for (uint32_t j = 0; j < q.nodeCount; ++j) {
+            if (j == i || entries[j] == kNoPath || to[j] == kNo) continue;
+            dj.offer(to[j], du + double(entries[j]) * q.scale, kNo);
+        }
+    };
+    std::vector<std::pair<uint32_t, uint32_t>> sourceRows;
     for (uint32_t k = 0; k < K; ++k) {
         const uint32_t b = v.slot(fr.slot_begin() + k);
-        dj.begin(v.nodes);
-        if (v.active(b)) dj.offer(b, 0.0, kNo);
-        else relaxNode(b, 0.0);  // merged away: it enters through its rows, as an endpoint does
-        for (uint32_t u = dj.next(); u != kNo; u = dj.next()) relaxNode(u, dj.dist[u]);
-        for (size_t r = 0; r < nodes.size(); ++r) values[r * K + k] = dj.dist[nodes[r]];
+        dj.begin(nodes.size());
+        if (v.active(b)) {
+            dj.offer(localOf(b), 0.0, kNo);
+        } else {  // merged away: it enters through its rows, as an endpoint does
+            sourceRows.clear();
+            membershipsOf(b, sourceRows);
+            for (const auto& row : sourceRows) relaxRow(row, 0.0);
+        }
+        for (uint32_t u = dj.next(); u != kNo; u = dj.next())
+            for (uint32_t m = rowsBegin[u]; m < rowsBegin[u + 1]; ++m) relaxRow(rows[m], dj.dist[u]);
+        for (size_t r = 0; r < nodes.size(); ++r) values[r * K + k] = dj.dist[r];
     }
 }
 

@@ -52,9 +52,34 @@ void orderPatch(const Patch& patch, const std::vector<uint8_t>& sharing, PatchMa
 // One layer: domains, then one exact run per matrix row (read at the later rows). The
 // wavefront engine runs each row to the end of its small domain and still beats MMP
 // stopping at the last target (BENCHMARKS.md).
+// The order in which a patch's rows run when their runs are bounded (computeLayer): by
+// decreasing upper bound from an end row a (the row farthest from row 0; ties: the lower
+// row), a last. The rows left to the run of a row r are then no farther from a than r, so
+// within twice r's distance to a, and the rows near a run small.
+std::vector<uint32_t> chainRows(const PatchMatrix& upperBounds) {
+    const uint32_t n = upperBounds.rows;
+    uint32_t end = 0;
+    for (uint32_t j = 1; j < n; ++j)
+        if (upperBounds.at(0, j) > upperBounds.at(0, end)) end = j;
+    std::vector<uint32_t> order(n);
+    for (uint32_t j = 0; j < n; ++j) order[j] = j;
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) {
+        return upperBounds.at(end, x) > upperBounds.at(end, y);
+    });
+    return order;
+}
+
+// Exact rows of every patch: one wavefront run per row (but the last), each giving the
+// pairs with the rows after it. With `upperBounds` (first layer: the composed overlay, whose
+// node paths are surface paths inside the grown patch and so never shorter than the exact
+// distances), the rows run in chainRows order and each run stops beyond the largest bound
+// of its pairs (times 1 + 1e-6): the pairs left to a run lie close to its source, and a
+// bounded run does only the work inside its bound. A pair the bound missed (never seen)
+// is computed again unbounded.
 void computeLayer(const Mesh& mesh, const std::vector<Patch>& patches, const std::vector<uint32_t>& facePatch,
                   bool nodesOnly, const PatchGeodesicsOptions& options, const char* stage,
-                  const StageProgress& progress, std::vector<PatchMatrix>& out, uint64_t& runs) {
+                  const StageProgress& progress, std::vector<PatchMatrix>& out, uint64_t& runs,
+                  const std::vector<PatchMatrix>* upperBounds = nullptr) {
     const std::vector<uint8_t> sharing = patchesPerVertex(mesh, facePatch);
     out.assign(patches.size(), PatchMatrix());
     std::vector<std::unique_ptr<ExactGeodesic>> domains(patches.size());
@@ -66,8 +91,19 @@ void computeLayer(const Mesh& mesh, const std::vector<Patch>& patches, const std
         if (m.rows >= 2) domains[p] = std::make_unique<ExactGeodesic>(mesh, growFaces(mesh, patches[p].faces, options.marginRings));
     });
 
+    // Per patch, the rows in the order they run (position k gives the pairs with positions
+    // after k).
+    std::vector<std::vector<uint32_t>> order(patches.size());
+    parallelFor(patches.size(), [&](size_t p) {
+        if (upperBounds) {
+            order[p] = chainRows((*upperBounds)[p]);
+        } else {
+            order[p].resize(out[p].rows);
+            for (uint32_t r = 0; r < out[p].rows; ++r) order[p][r] = r;
+        }
+    });
     struct Job {
-        uint32_t patch, row;
+        uint32_t patch, row;  // row: the position in order[patch]
     };
     std::vector<Job> jobs;
     for (uint32_t p = 0; p < patches.size(); ++p)
@@ -91,9 +127,25 @@ void computeLayer(const Mesh& mesh, const std::vector<Patch>& patches, const std
         PatchMatrix& m = out[job.patch];
         const ExactGeodesic& geo = *domains[job.patch];
         Scratch& s = scratch.local();
-        s.workspace.run(geo, {uint32_t(geo.localVertex(m.vertices[job.row]))}, s.dist);
-        for (uint32_t j = job.row + 1; j < m.rows; ++j)
-            m.upper[upperIndex(m.rows, job.row, j)] = s.dist[size_t(geo.localVertex(m.vertices[j]))];
+        const std::vector<uint32_t>& rows = order[job.patch];
+        const uint32_t source = rows[job.row];
+        double bound = kInfinity;
+        if (upperBounds) {
+            bound = 0;
+            for (uint32_t k = job.row + 1; k < m.rows; ++k)
+                bound = std::max(bound, (*upperBounds)[job.patch].at(source, rows[k]) * (1.0 + 1e-6));
+        }
+        const uint32_t sourceVertex = uint32_t(geo.localVertex(m.vertices[source]));
+        s.workspace.run(geo, {sourceVertex}, s.dist, nullptr, bound);
+        bool missed = false;
+        for (uint32_t k = job.row + 1; k < m.rows; ++k)
+            missed |= s.dist[size_t(geo.localVertex(m.vertices[rows[k]]))] == kInfinity;
+        if (missed && bound < kInfinity) s.workspace.run(geo, {sourceVertex}, s.dist);
+        for (uint32_t k = job.row + 1; k < m.rows; ++k) {
+            const uint32_t target = rows[k];
+            m.upper[upperIndex(m.rows, std::min(source, target), std::max(source, target))] =
+                s.dist[size_t(geo.localVertex(m.vertices[target]))];
+        }
         const size_t n = ++done;
         if (progress && (n % step == 0 || n == jobs.size())) {
             std::lock_guard<std::mutex> lock(progressMutex);
@@ -248,10 +300,12 @@ PatchGeodesics computePatchGeodesics(const Mesh& mesh, const Partition& partitio
                  result.second, result.stats.sourceRuns);
     result.stats.secondLayerSeconds = secondsSince(t0);
     t0 = std::chrono::steady_clock::now();
-    if (options.firstLayer == PatchGeodesicsOptions::FirstLayer::Exact)
+    if (options.firstLayer == PatchGeodesicsOptions::FirstLayer::Exact) {
+        std::vector<PatchMatrix> composed;  // the bounds of the exact runs
+        composeFirstLayer(mesh, partition, result.second, composed, progress);
         computeLayer(mesh, partition.first, partition.faceFirst, true, options, "first-layer geodesics", progress,
-                     result.first, result.stats.sourceRuns);
-    else
+                     result.first, result.stats.sourceRuns, &composed);
+    } else
         composeFirstLayer(mesh, partition, result.second, result.first, progress);
     result.stats.firstLayerSeconds = secondsSince(t0);
     for (const auto* layer : {&result.first, &result.second})

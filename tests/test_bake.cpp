@@ -16,6 +16,7 @@
 #include "blob_reader.h"
 #include "generators.h"
 #include "geodesic_exact.h"
+#include "geodesic_wavefront.h"
 #include "mesh_io.h"
 #include "patch_geodesics.h"
 #include "test_helpers.h"
@@ -445,4 +446,40 @@ TEST_CASE("bake: every shared mesh bakes with defaults", "[bake][shared]") {
         CHECK(c.graph()->vertex_count() == mesh.vertexCount());
         CHECK(report.secondPatches > report.firstPatches);
     }
+}
+
+TEST_CASE("bake: --exact-first-layer entries equal unbounded exact runs, for any thread count", "[bake]") {
+    // The exact first layer runs bounded by the composed overlay, in an order that leaves
+    // each run's pairs close to its source (patch_geodesics.cpp): every entry must still be
+    // the exact distance on the first-layer patch plus its margin ring.
+    const Mesh mesh = smallBumpy();
+    PartitionOptions po;
+    po.firstLayerSeeds = 4;
+    const Partition partition = partitionMesh(mesh, po);
+    PatchGeodesicsOptions o;
+    o.firstLayer = PatchGeodesicsOptions::FirstLayer::Exact;
+    const PatchGeodesics g = computePatchGeodesics(mesh, partition, o);
+    REQUIRE(g.first.size() == partition.first.size());
+    REQUIRE(partition.first.size() >= 2);
+    WavefrontWorkspace ws;
+    std::vector<double> dist;
+    size_t checked = 0;
+    for (uint32_t p = 0; p < partition.first.size(); ++p) {
+        const PatchMatrix& m = g.first[p];
+        const ExactGeodesic geo(mesh, growFaces(mesh, partition.first[p].faces, o.marginRings));
+        for (uint32_t i = 0; i < m.rows; ++i) {
+            ws.run(geo, {uint32_t(geo.localVertex(m.vertices[i]))}, dist);
+            for (uint32_t j = 0; j < m.rows; ++j) {
+                const double exact = dist[geo.localVertex(m.vertices[j])];
+                REQUIRE(std::fabs(m.at(i, j) - exact) <= 1e-9 * (1.0 + exact));
+                ++checked;
+            }
+        }
+    }
+    CHECK(checked > 1000);
+    BakeOptions b;
+    b.exactFirstLayer = true;
+    b.hubLabels = true;
+    b.n1 = 4;
+    CHECK(bakeWith(mesh, b, 1) == bakeWith(mesh, b, 2));
 }

@@ -2,6 +2,7 @@
 
 #include "vorogeo_distance_coding.h"
 #include "vorogeo_label_coding.h"
+#include "vorogeo_topology_coding.h"
 #include "vorogeo_generated.h"
 
 namespace vorogeo {
@@ -75,6 +76,11 @@ void codeDistances(std::vector<uint8_t>& flatbuffer) {
         vg_code_first_matrix(firstPlain.data(), first, p->matrix_begin(), p->slot_count(), p->scale(), &s, 0);
     }
     codeLabels(flatbuffer, g);
+    auto indicesIn = [&](const flatbuffers::Vector<uint32_t>* v) {
+        return reinterpret_cast<uint32_t*>(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(v->data()) - flatbuffer.data()));
+    };
+    vg_code_topology(indicesIn(g->face_vertices()), indicesIn(g->face_twin()), g->face_twin()->size(),
+                     indicesIn(g->vertex_halfedge()), g->vertex_halfedge()->size(), 0);
 }
 
 }  // namespace vorogeo

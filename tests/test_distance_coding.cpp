@@ -23,6 +23,7 @@
 #include "vorogeo_container.h"
 #include "vorogeo_distance_coding.h"
 #include "vorogeo_label_coding.h"
+#include "vorogeo_topology_coding.h"
 
 #include <zstd.h>
 
@@ -213,6 +214,11 @@ TEST_CASE("distance coding: a compact blob is coded, smaller, and opens to the s
         REQUIRE(size_t(got.secondDistancesEnd - got.secondDistances) == secondBytes);
         REQUIRE(std::memcmp(got.secondDistances, want.secondDistances, secondBytes) == 0);
         REQUIRE(std::memcmp(got.firstDistances, want.firstDistances, firstBytes) == 0);
+        // the topology, delta-coded (vorogeo_topology_coding.h)
+        REQUIRE(got.faceCount == want.faceCount);
+        REQUIRE(std::memcmp(got.faceVertices, want.faceVertices, 12 * size_t(want.faceCount)) == 0);
+        REQUIRE(std::memcmp(got.faceTwin, want.faceTwin, 12 * size_t(want.faceCount)) == 0);
+        REQUIRE(std::memcmp(got.vertexHalfedge, want.vertexHalfedge, 4 * size_t(want.vertexCount)) == 0);
     }
     {  // the portable decoder on the real arrays, re-coded by the reference encoder
         const vg_graph& g = want;
@@ -390,4 +396,27 @@ TEST_CASE("label coding: a compact blob's hub labels are coded, smaller, and ope
         REQUIRE(vg_distance(got.graph(), wb.get(), s, t, &db) == VG_OK);
         REQUIRE(std::memcmp(&da, &db, sizeof da) == 0);
     }
+}
+
+TEST_CASE("topology coding: decode(encode(x)) = x for any indices, and any codes decode", "[runtime][coding]") {
+    std::mt19937 rng(17);
+    for (int trial = 0; trial < 50; ++trial) {
+        const size_t H = rng() % 300, V = rng() % 100;
+        std::vector<uint32_t> fv(H), tw(H), vh(V);
+        for (uint32_t& x : fv) x = rng() % 4 == 0 ? uint32_t(rng()) : rng() % 1000;
+        for (uint32_t& x : tw) x = rng() % 5 == 0 ? VG_TOPOLOGY_NONE : uint32_t(rng()) >> (rng() % 2 ? 1 : 20);
+        for (uint32_t& x : vh) x = rng() % 5 == 0 ? VG_TOPOLOGY_NONE : uint32_t(rng()) >> (rng() % 2 ? 1 : 20);
+        std::vector<uint32_t> a = fv, b = tw, c = vh;
+        vg_code_topology(a.data(), b.data(), H, c.data(), V, 0);
+        if (H > 2) CHECK(a != fv);
+        vg_code_topology(a.data(), b.data(), H, c.data(), V, 1);
+        REQUIRE(a == fv);
+        REQUIRE(b == tw);
+        REQUIRE(c == vh);
+    }
+    // A mesh stored with locality codes to small numbers: a strip of faces.
+    std::vector<uint32_t> strip, twins(30, VG_TOPOLOGY_NONE), none;
+    for (uint32_t f = 0; f < 10; ++f) strip.insert(strip.end(), {f, f + 1, f + 2});
+    vg_code_topology(strip.data(), twins.data(), strip.size(), none.data(), 0, 0);
+    for (size_t h = 1; h < strip.size(); ++h) CHECK(strip[h] <= 4);
 }

@@ -9,6 +9,7 @@
 #include "vorogeo_container.h"
 #include "vorogeo_distance_coding.h"
 #include "vorogeo_label_coding.h"
+#include "vorogeo_topology_coding.h"
 
 namespace vorogeo::tools {
 
@@ -84,6 +85,23 @@ bool decodeLabels(std::vector<uint8_t>& flatbuffer, std::string& error) {
     return true;
 }
 
+// Decodes the mesh topology's indices in place (schema/vorogeo_topology_coding.h): any
+// bytes decode to some indices, which the readers check as in an uncoded blob.
+bool decodeTopology(std::vector<uint8_t>& flatbuffer, std::string& error) {
+    const fb::Graph* g = fb::GetGraph(flatbuffer.data());
+    if (!g->face_vertices() || !g->face_twin() || !g->vertex_halfedge() ||
+        g->face_vertices()->size() != g->face_twin()->size()) {
+        error = "coded topology without its arrays";
+        return false;
+    }
+    auto indicesOf = [&](const flatbuffers::Vector<uint32_t>* v) {
+        return reinterpret_cast<uint32_t*>(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(v->data()) - flatbuffer.data()));
+    };
+    vg_code_topology(indicesOf(g->face_vertices()), indicesOf(g->face_twin()), g->face_twin()->size(),
+                     indicesOf(g->vertex_halfedge()), g->vertex_halfedge()->size(), 1);
+    return true;
+}
+
 // Decodes the distances in place (schema/vorogeo_distance_coding.h) after checking that
 // every patch's slots, slot ids and matrix lie inside their arrays; the runtime checks all
 // of that and more in vg_validate, the tools only what the decoder reads.
@@ -129,7 +147,8 @@ bool decodeDistances(std::vector<uint8_t>& flatbuffer, std::string& error) {
         return true;
     };
     return decodeLayer(g->second_patches(), g->second_distances(), false) &&
-           decodeLayer(g->first_patches(), g->first_distances(), true) && decodeLabels(flatbuffer, error);
+           decodeLayer(g->first_patches(), g->first_distances(), true) && decodeLabels(flatbuffer, error) &&
+           decodeTopology(flatbuffer, error);
 }
 
 }  // namespace

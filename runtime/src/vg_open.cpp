@@ -137,7 +137,7 @@ extern "C" vg_status vg_open(const void* blob, size_t blob_size, void* memory, s
         cursor += alignUp(size_t(h.flatbufferSize));
     }
 
-    st = vg::verifyAndBind(flatbuffer, size_t(h.flatbufferSize), *graph);
+    st = vg::verifyAndBind(flatbuffer, size_t(h.flatbufferSize), *graph, h.coded);
     if (st != VG_OK) return st;
     const bool avx2 = vg::cpuHasAvx2();
     if (h.coded) {

@@ -5,6 +5,8 @@
 // pointing home, positions and scales finite. One pass over each array.
 #include "vg_validate.h"
 
+#include "vorogeo_topology_coding.h"
+
 #include "vorogeo_generated.h"
 
 namespace vg {
@@ -230,7 +232,7 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
 
 }  // namespace
 
-vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& graph) {
+vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& graph, bool codedTopology) {
     flatbuffers::Verifier verifier(flatbuffer, size);
     if (!vorogeo::fb::VerifyGraphBuffer(verifier)) return VG_ERR_CORRUPT_STRUCTURE;
     const vorogeo::fb::Graph* g = vorogeo::fb::GetGraph(flatbuffer);
@@ -364,6 +366,9 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& 
     for (uint64_t n = 0; n < N; ++n)
         if (out.vertexPatch[out.nodeVertex[n]] == kNone) return VG_ERR_CORRUPT_CONTENT;
 
+    if (codedTopology)
+        vg_code_topology(const_cast<uint32_t*>(out.faceVertices), const_cast<uint32_t*>(out.faceTwin),
+                         3 * uint64_t(out.faceCount), const_cast<uint32_t*>(out.vertexHalfedge), V, 1);
     if (!facesValid(out)) return VG_ERR_CORRUPT_CONTENT;
     if (!hubsValid(g, out)) return VG_ERR_CORRUPT_CONTENT;
 

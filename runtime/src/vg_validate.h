@@ -8,7 +8,9 @@
 
 namespace vg {
 
-// `flatbuffer` must be 8-byte aligned. Fills `graph` only on VG_OK.
-vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& graph);
+// `flatbuffer` must be 8-byte aligned. Fills `graph` only on VG_OK. With `codedTopology`
+// (a coded blob in memory the caller owns) the mesh topology's indices are decoded in place
+// (schema/vorogeo_topology_coding.h) before they are checked.
+vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& graph, bool codedTopology = false);
 
 }  // namespace vg

@@ -36,8 +36,8 @@ struct View {
 };
 
 // Dijkstra over node ids, reused across runs by one thread. Nodes settle by distance, then
-// node id (what a binary heap of (distance, node) pairs with lazy deletion gives, as
-// before session 26: the same labels bit for bit). Every label is valid at all times
+// node id (what a binary heap of (distance, node) pairs with lazy deletion gives, so the
+// labels are those of such a heap bit for bit). Every label is valid at all times
 // (the nodes a run touched are reset at the next begin), so relaxing an edge is one load
 // and one comparison; a settled node is never lowered (lengths are not negative). The
 // queue is an indexed 4-ary heap with one entry per node, lowered in place, instead of

@@ -56,7 +56,7 @@ void orderPatch(const Patch& patch, const std::vector<uint8_t>& sharing, PatchMa
 // decreasing upper bound from an end row a (the row farthest from row 0; ties: the lower
 // row), a last. The rows left to the run of a row r are then no farther from a than r, so
 // within twice r's distance to a, and the rows near a run small.
-std::vector<uint32_t> chainRows(const PatchMatrix& upperBounds) {
+std::vector<uint32_t> boundedRunOrder(const PatchMatrix& upperBounds) {
     const uint32_t n = upperBounds.rows;
     uint32_t end = 0;
     for (uint32_t j = 1; j < n; ++j)
@@ -72,7 +72,7 @@ std::vector<uint32_t> chainRows(const PatchMatrix& upperBounds) {
 // Exact rows of every patch: one wavefront run per row (but the last), each giving the
 // pairs with the rows after it. With `upperBounds` (first layer: the composed overlay, whose
 // node paths are surface paths inside the grown patch and so never shorter than the exact
-// distances), the rows run in chainRows order and each run stops beyond the largest bound
+// distances), the rows run in boundedRunOrder and each run stops beyond the largest bound
 // of its pairs (times 1 + 1e-6): the pairs left to a run lie close to its source, and a
 // bounded run does only the work inside its bound. A pair the bound missed (never seen)
 // is computed again unbounded.
@@ -96,7 +96,7 @@ void computeLayer(const Mesh& mesh, const std::vector<Patch>& patches, const std
     std::vector<std::vector<uint32_t>> order(patches.size());
     parallelFor(patches.size(), [&](size_t p) {
         if (upperBounds) {
-            order[p] = chainRows((*upperBounds)[p]);
+            order[p] = boundedRunOrder((*upperBounds)[p]);
         } else {
             order[p].resize(out[p].rows);
             for (uint32_t r = 0; r < out[p].rows; ++r) order[p][r] = r;

@@ -125,6 +125,20 @@ void encode(const vg_graph& g, const std::vector<uint8_t>& plainSecond, const st
     }
 }
 
+// Random pairs (from `seed`) answered by two opened blobs: the same bits.
+void requireSamePointToPoint(const tools::RuntimeGraph& a, tools::RuntimeWorkspace& wa, const tools::RuntimeGraph& b,
+                             tools::RuntimeWorkspace& wb, int pairs, uint32_t seed) {
+    const uint32_t V = vg_vertex_count(a.graph());
+    std::mt19937 rng(seed);
+    for (int i = 0; i < pairs; ++i) {
+        const uint32_t s = rng() % V, t = rng() % V;
+        float da = 0, db = 0;
+        REQUIRE(vg_distance(a.graph(), wa.get(), s, t, &da) == VG_OK);
+        REQUIRE(vg_distance(b.graph(), wb.get(), s, t, &db) == VG_OK);
+        REQUIRE(std::memcmp(&da, &db, sizeof da) == 0);
+    }
+}
+
 }  // namespace
 
 TEST_CASE("distance coding: a row's predictions are vg_predicted_quantum's, in both versions", "[runtime][coding]") {
@@ -241,15 +255,8 @@ TEST_CASE("distance coding: a compact blob is coded, smaller, and opens to the s
     tools::RuntimeGraph opened;
     REQUIRE(opened.open(coded, error));
     tools::RuntimeWorkspace wa(reference), wb(opened);
+    requireSamePointToPoint(reference, wa, opened, wb, 200, 3);
     const uint32_t V = vg_vertex_count(reference.graph());
-    std::mt19937 rng(3);
-    for (int i = 0; i < 200; ++i) {
-        const uint32_t s = rng() % V, t = rng() % V;
-        float da = 0, db = 0;
-        REQUIRE(vg_distance(reference.graph(), wa.get(), s, t, &da) == VG_OK);
-        REQUIRE(vg_distance(opened.graph(), wb.get(), s, t, &db) == VG_OK);
-        REQUIRE(std::memcmp(&da, &db, sizeof da) == 0);
-    }
     std::vector<float> fa(V), fb(V);
     const uint32_t source = V / 2;
     REQUIRE(vg_distance_field(reference.graph(), wa.get(), &source, 1, fa.data()) == VG_OK);
@@ -387,15 +394,7 @@ TEST_CASE("label coding: a compact blob's hub labels are coded, smaller, and ope
     REQUIRE(std::memcmp(g.hubColumns, w.hubColumns, w.hubColumnBegin[w.hubTreeCount] * 2) == 0);
     REQUIRE(std::memcmp(g.hubInner, w.hubInner, w.hubInnerMatrixBegin[w.firstCount] * 2) == 0);
     tools::RuntimeWorkspace wa(want), wb(got);
-    const uint32_t V = vg_vertex_count(want.graph());
-    std::mt19937 rng(5);
-    for (int i = 0; i < 300; ++i) {
-        const uint32_t s = rng() % V, t = rng() % V;
-        float da = 0, db = 0;
-        REQUIRE(vg_distance(want.graph(), wa.get(), s, t, &da) == VG_OK);
-        REQUIRE(vg_distance(got.graph(), wb.get(), s, t, &db) == VG_OK);
-        REQUIRE(std::memcmp(&da, &db, sizeof da) == 0);
-    }
+    requireSamePointToPoint(want, wa, got, wb, 300, 5);
 }
 
 TEST_CASE("topology coding: decode(encode(x)) = x for any indices, and any codes decode", "[runtime][coding]") {

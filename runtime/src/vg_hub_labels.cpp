@@ -245,10 +245,27 @@ void targetColumns(const vg_graph& g, const uint16_t* d, const HubExit* exits, u
     }
 }
 
+// The exits (in hub order) with a row in block r: [*begin, *end), found by bisection, so
+// that the kernels loop over them alone (most exits of a deep block's side lie above it).
+inline uint32_t firstExitFrom(const HubExit* exits, uint32_t count, uint32_t hub) {
+    uint32_t lo = 0, hi = count;
+    while (lo < hi) {
+        const uint32_t mid = (lo + hi) / 2;
+        if (exits[mid].hub < hub) lo = mid + 1;
+        else hi = mid;
+    }
+    return lo;
+}
+inline void exitsInBlock(const HubExit* exits, uint32_t count, const HubBlockRef& r, uint32_t* begin, uint32_t* end) {
+    *begin = firstExitFrom(exits, count, r.lo);
+    *end = *begin + firstExitFrom(exits + *begin, count - *begin, r.hi);
+}
+
 #if VG_HUB_AVX2
 void prefetchRows(const vg_graph& g, const HubBlockRef& r, const HubExit* exits, uint32_t exitCount) {
-    for (uint32_t e = 0; e < exitCount; ++e)
-        if (inBlock(r, exits[e].hub)) _mm_prefetch(reinterpret_cast<const char*>(columnRow(g, r, exits[e].hub)), _MM_HINT_T0);
+    uint32_t begin, end;
+    exitsInBlock(exits, exitCount, r, &begin, &end);
+    for (uint32_t e = begin; e < end; ++e) _mm_prefetch(reinterpret_cast<const char*>(columnRow(g, r, exits[e].hub)), _MM_HINT_T0);
 }
 
 VG_AVX2_TARGET void sourceColumnsAvx2(const vg_graph& g, const HubExit* exits, uint32_t exitCount,
@@ -257,8 +274,9 @@ VG_AVX2_TARGET void sourceColumnsAvx2(const vg_graph& g, const HubExit* exits, u
         const HubBlockRef r = blocks[i];
         if (i + 1 < blockCount) prefetchRows(g, blocks[i + 1], exits, exitCount);  // loads while this block adds
         __m256i acc = _mm256_set1_epi16(-1);
-        for (uint32_t e = 0; e < exitCount; ++e) {
-            if (!inBlock(r, exits[e].hub)) continue;
+        uint32_t begin, end;
+        exitsInBlock(exits, exitCount, r, &begin, &end);
+        for (uint32_t e = begin; e < end; ++e) {
             const __m256i row = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(columnRow(g, r, exits[e].hub)));
             acc = _mm256_min_epu16(acc, _mm256_adds_epu16(row, _mm256_set1_epi16(short(exits[e].steps))));
         }
@@ -276,8 +294,9 @@ VG_AVX2_TARGET void targetColumnsAvx2(const vg_graph& g, const uint16_t* d, cons
         const __m128i half = _mm_min_epu16(_mm256_castsi256_si128(di), _mm256_extracti128_si256(di, 1));
         if (outOfRoom(g, r, uint16_t(_mm_cvtsi128_si32(_mm_minpos_epu16(half))))) continue;
         if (i + 1 < blockCount) prefetchRows(g, blocks[i + 1], exits, exitCount);
-        for (uint32_t e = 0; e < exitCount; ++e) {
-            if (!inBlock(r, exits[e].hub)) continue;
+        uint32_t begin, end;
+        exitsInBlock(exits, exitCount, r, &begin, &end);
+        for (uint32_t e = begin; e < end; ++e) {
             const __m256i row = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(columnRow(g, r, exits[e].hub)));
             __m256i* a = reinterpret_cast<__m256i*>(acc + uint64_t(e) * kHubBlock);
             _mm256_storeu_si256(a, _mm256_min_epu16(_mm256_loadu_si256(a), _mm256_adds_epu16(row, di)));
@@ -431,6 +450,53 @@ float blockBoundTo(const vg_graph& g, const float* block, const EndpointBounds& 
     return best > 0.0f ? best : 0.0f;
 }
 
+#if VG_HUB_AVX2
+// The landmark part of blockBoundTo eight landmarks at a time. A block's ranges lie as
+// (lo, hi) pairs; two loads and two shuffles split them into lanes holding landmarks
+// {0, 1, 4, 5, 2, 3, 6, 7} of each group of eight, the order of LandmarkLanes.
+struct LandmarkLanes {
+    alignas(32) float distance[kMaxLandmarks];  // the endpoint's; +inf: no bound (or no landmark)
+    alignas(32) float allowance[kMaxLandmarks];  // two landmark steps and the endpoint's slack
+};
+constexpr uint32_t kLaneLandmark[8] = {0, 1, 4, 5, 2, 3, 6, 7};
+
+void landmarkLanes(const vg_graph& g, const EndpointBounds& x, LandmarkLanes& out) {
+    for (uint32_t k0 = 0; k0 < g.landmarkCount; k0 += 8)
+        for (uint32_t i = 0; i < 8; ++i) {
+            const uint32_t k = k0 + kLaneLandmark[i];
+            out.distance[k0 + i] = k < g.landmarkCount ? x.landmarks[k] : __builtin_inff();
+            out.allowance[k0 + i] = k < g.landmarkCount ? 2.0f * g.landmarkScale[k] + x.slack : 0.0f;
+        }
+}
+
+// The same numbers as blockBoundTo: the same operations on each landmark, and a maximum.
+VG_AVX2_TARGET float blockBoundToAvx2(const vg_graph& g, const float* block, const EndpointBounds& x,
+                                      const LandmarkLanes& lanes) {
+    const float dx = block[0] - x.position[0], dy = block[1] - x.position[1], dz = block[2] - x.position[2];
+    const float sphere = __builtin_sqrtf(dx * dx + dy * dy + dz * dz) - block[3];
+    const __m256 inf = _mm256_set1_ps(__builtin_inff()), none = _mm256_set1_ps(-__builtin_inff());
+    const __m256i index = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    __m256 best = none;
+    for (uint32_t k = 0; k < g.landmarkCount; k += 8) {
+        // Only this group's floats are read: the last block of the table may end right after them.
+        const int floats = int(2 * (g.landmarkCount - k < 8 ? g.landmarkCount - k : 8));
+        const __m256 v0 = _mm256_maskload_ps(block + 4 + 2 * k, _mm256_cmpgt_epi32(_mm256_set1_epi32(floats), index));
+        const __m256 v1 = _mm256_maskload_ps(block + 12 + 2 * k, _mm256_cmpgt_epi32(_mm256_set1_epi32(floats - 8), index));
+        const __m256 lo = _mm256_shuffle_ps(v0, v1, 0x88), hi = _mm256_shuffle_ps(v0, v1, 0xDD);
+        const __m256 d = _mm256_load_ps(lanes.distance + k);
+        const __m256 below = _mm256_sub_ps(lo, d), above = _mm256_sub_ps(d, hi);
+        const __m256 wider = _mm256_blendv_ps(above, below, _mm256_cmp_ps(below, above, _CMP_GT_OQ));
+        const __m256 b = _mm256_sub_ps(wider, _mm256_load_ps(lanes.allowance + k));
+        best = _mm256_max_ps(best, _mm256_blendv_ps(b, none, _mm256_cmp_ps(d, inf, _CMP_EQ_OQ)));
+    }
+    const __m128 half = _mm_max_ps(_mm256_castps256_ps128(best), _mm256_extractf128_ps(best, 1));
+    const __m128 quarter = _mm_max_ps(half, _mm_movehl_ps(half, half));
+    const float landmarks = _mm_cvtss_f32(_mm_max_ss(quarter, _mm_shuffle_ps(quarter, quarter, 1)));
+    const float bound = landmarks > sphere ? landmarks : sphere;
+    return bound > 0.0f ? bound : 0.0f;
+}
+#endif
+
 // The blocks of the common tree path (down to tree node `lca`) whose hubs may lie on a path
 // from s to t no longer than `upper`: all of them without block bounds or without an upper
 // bound. Returns their number.
@@ -440,6 +506,19 @@ uint32_t pathBlocks(const vg_graph& g, vg_workspace& ws, uint32_t lca, const End
     uint32_t count = 0;
     const bool bounded = g.hubBlockBounds != nullptr && upper != __builtin_inff();
     const uint32_t stride = 4 + 2 * g.landmarkCount;
+#if VG_HUB_AVX2
+    LandmarkLanes lanesS, lanesT;
+    if (bounded && g.avx2) {
+        landmarkLanes(g, bs, lanesS);
+        landmarkLanes(g, bt, lanesT);
+    }
+    auto boundTo = [&](const float* block, const EndpointBounds& x, const LandmarkLanes& lanes) {
+        return g.avx2 ? blockBoundToAvx2(g, block, x, lanes) : blockBoundTo(g, block, x);
+    };
+#else
+    auto boundTo = [&](const float* block, const EndpointBounds& x, int) { return blockBoundTo(g, block, x); };
+    const int lanesS = 0, lanesT = 0;
+#endif
     // From the common node up to the root, each node's blocks last to first, reversed at the
     // end: the matrices are then read in the order they lie in.
     for (uint32_t x = lca; x != kNone; x = g.hubTree[x].parent) {
@@ -447,8 +526,8 @@ uint32_t pathBlocks(const vg_graph& g, vg_workspace& ws, uint32_t lca, const End
             HubBlockRef r = blockRef(g, ws, x, b);
             if (bounded) {
                 const float* block = g.hubBlockBounds + uint64_t(ws.hubBlockBegin[x] + b) * stride;
-                const float toT = blockBoundTo(g, block, bt) * kBoundShrink;
-                if (blockBoundTo(g, block, bs) * kBoundShrink + toT > upper) continue;
+                const float toT = boundTo(block, bt, lanesT) * kBoundShrink;
+                if (boundTo(block, bs, lanesS) * kBoundShrink + toT > upper) continue;
                 r.targetRoom = upper - toT;
             }
             out[count++] = r;
@@ -579,6 +658,24 @@ float hubEndpointLandmarks(const vg_graph& g, vg_workspace& ws, uint32_t x, floa
     endpointBounds(g, ws, x, side, ws.hubSlotSteps, b);
     for (uint32_t k = 0; k < g.landmarkCount; ++k) out[k] = b.landmarks[k];
     return b.slack;
+}
+
+float hubBlockBound(const vg_graph& g, vg_workspace& ws, uint32_t x, uint32_t block) {
+    Side side;
+    if (g.hubTreeCount == 0 || g.hubBlockBounds == nullptr || g.vertexPatch[x] == kNone || !sideOf(g, x, side))
+        return -1.0f;
+    if (side.hub == kNone) innerSteps(g, ws, x, side, ws.hubSlotSteps);
+    EndpointBounds b;
+    endpointBounds(g, ws, x, side, ws.hubSlotSteps, b);
+    const float* bounds = g.hubBlockBounds + uint64_t(block) * (4 + 2 * g.landmarkCount);
+#if VG_HUB_AVX2
+    if (g.avx2) {
+        LandmarkLanes lanes;
+        landmarkLanes(g, b, lanes);
+        return blockBoundToAvx2(g, bounds, b, lanes);
+    }
+#endif
+    return blockBoundTo(g, bounds, b);
 }
 
 uint32_t innerRow(const vg_graph& g, uint32_t first, uint32_t node) {

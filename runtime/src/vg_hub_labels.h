@@ -26,6 +26,12 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
 // the tests.
 float hubEndpointLandmarks(const vg_graph& g, vg_workspace& ws, uint32_t x, float* out);
 
+// The lower bound a label query takes from vertex x to the hubs of bounded block `block`
+// (0 <= block < the workspace's block count), with the kernels g selects (AVX2 or
+// portable); -1 when the labels do not answer for x or the blob has no block bounds. For
+// the tests.
+float hubBlockBound(const vg_graph& g, vg_workspace& ws, uint32_t x, uint32_t block);
+
 // Row of `node` among the inner rows of first-layer patch `first` (binary search of its
 // sorted node list), kNone if absent.
 uint32_t innerRow(const vg_graph& g, uint32_t first, uint32_t node);

@@ -136,9 +136,12 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
     clock.end("landmarks");
     if (options.hubLabels) {
         if (progress) progress("hub labels", 0.0);
-        const HubLabels hubs = computeHubLabels(buffer, [&](double f) {
-            if (progress) progress("hub labels", f);
-        });
+        const uint64_t vertices = verticesUsedByFaces(mesh);
+        const HubLabels hubs = computeHubLabels(
+            buffer, [&](double f) { if (progress) progress("hub labels", f); },
+            [&](const HubLabelSizes& sizes) {
+                checkHubLabelLimits(buffer.size(), sizes, vertices, options, residentBytes());
+            });
         report.hubs = hubs.hubCount;
         report.hubTreeNodes = hubs.tree.size();
         report.hubLabelEntries = hubs.columns.size();

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "bake.h"
+#include "hub_labels.h"
 
 namespace vorogeo {
 
@@ -37,6 +38,13 @@ void checkBakeLimits(uint64_t vertices, const BakeOptions& options);
 
 // Throws BakeLimitError when a flatbuffer of `bytes` cannot be built.
 void checkFlatbufferSize(uint64_t bytes, uint64_t vertices);
+
+// Throws BakeLimitError when hub labels of `sizes` cannot be added to a graph flatbuffer of
+// `graphBytes` bytes (the 2 GiB limit), or when building them would take the process over
+// options.maxMemoryBytes (if set). Checked once the label stage knows its sizes, seconds
+// into a stage that takes most of a large bake.
+void checkHubLabelLimits(uint64_t graphBytes, const HubLabelSizes& sizes, uint64_t vertices,
+                         const BakeOptions& options, uint64_t residentNow);
 
 // Throws BakeLimitError when the process's resident memory is above options.maxMemoryBytes
 // (if set); `stage` names where the bake was.

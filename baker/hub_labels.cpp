@@ -378,8 +378,9 @@ uint16_t steps(double d, double scale) {
 // The runs go over local ids (f's active nodes in increasing id, so ties settle as with
 // global ids) and f's second-layer node blocks unpacked once, in the order the graph
 // lists each node's patches.
-void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children, std::vector<uint32_t>& nodes,
-               std::vector<double>& values) {
+// The rows of first-layer patch f's inner matrix: the active nodes of its second-layer
+// patches (`children`), sorted.
+void innerNodesOf(const View& v, const std::vector<uint32_t>& children, std::vector<uint32_t>& nodes) {
     nodes.clear();
     for (uint32_t c : children) {
         const fb::PatchRecord& q = v.second(c);
@@ -390,6 +391,11 @@ void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children,
     }
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+}
+
+// `nodes`: innerNodesOf f's children.
+void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children, const std::vector<uint32_t>& nodes,
+               std::vector<double>& values) {
     const fb::PatchRecord& fr = v.first(f);
     const uint32_t K = fr.slot_count();
     values.assign(nodes.size() * K, kInf);
@@ -461,7 +467,8 @@ void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children,
 
 }  // namespace
 
-HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProgress& progress) {
+HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProgress& progress,
+                           const HubPlanCheck& checkPlan) {
     const auto start = std::chrono::steady_clock::now();
     HubLabels out;
     View v;
@@ -535,6 +542,17 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
             progress(double(n) / double(jobs));
         }
     };
+    parallelFor(v.firstCount, [&](size_t f) { innerNodesOf(v, children[f], innerNodes[f]); });
+    // The tables' sizes are known now, before the long runs: the caller may refuse them.
+    if (checkPlan) {
+        HubLabelSizes sizes;
+        sizes.labelEntries = out.columnBegin[T];
+        for (uint32_t f = 0; f < v.firstCount; ++f) {
+            sizes.innerNodes += innerNodes[f].size();
+            sizes.innerEntries += uint64_t(innerNodes[f].size()) * v.first(f).slot_count();
+        }
+        checkPlan(sizes);
+    }
     parallelFor(v.firstCount, [&](size_t f) {
         innerRows(v, uint32_t(f), children[f], innerNodes[f], innerValues[f]);
         tick();

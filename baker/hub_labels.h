@@ -64,8 +64,19 @@ constexpr uint32_t kHubBlock = 16;
 
 using HubProgress = std::function<void(double fraction)>;
 
+// The sizes of the tables computeHubLabels will build (HubLabels::columns, inner and
+// innerNode), known from the separator tree before any label is computed.
+struct HubLabelSizes {
+    uint64_t labelEntries = 0;
+    uint64_t innerEntries = 0;
+    uint64_t innerNodes = 0;
+};
+// Called once with the planned sizes; it may throw to refuse them (bake_limits.h).
+using HubPlanCheck = std::function<void(const HubLabelSizes&)>;
+
 // Builds the labels of `flatbuffer` (a verified Graph buffer, distances not coded).
 // Deterministic for any number of threads.
-HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProgress& progress = HubProgress());
+HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProgress& progress = HubProgress(),
+                           const HubPlanCheck& checkPlan = HubPlanCheck());
 
 }  // namespace vorogeo

@@ -1,6 +1,7 @@
 // Limits and interrupted work: bakes that would break the flatbuffers 2 GiB limit or the
 // memory budget are refused up front with a message naming the limit; Ctrl-C, SIGTERM and
-// SIGKILL during a bake leave no output file (and no temporary one after a clean stop).
+// SIGKILL during a bake leave no output file (and no temporary one after a clean stop); the
+// hub-label stage states its table sizes before computing them, so the limits refuse it early.
 #include <catch2/catch.hpp>
 
 #include <signal.h>
@@ -15,8 +16,10 @@
 #include "bake.h"
 #include "bake_limits.h"
 #include "generators.h"
+#include "hub_labels.h"
 #include "mesh_io.h"
 #include "test_helpers.h"
+#include "vorogeo_container.h"
 
 using namespace vorogeo;
 
@@ -155,4 +158,51 @@ TEST_CASE("interrupts: SIGINT or SIGTERM stop a bake cleanly, SIGKILL leaves no 
         // No output, and no temporary file either (the blob is written only at the end).
         CHECK(filesIn(dir) == std::vector<std::string>{"err.txt", "torus.ply"});
     }
+}
+
+TEST_CASE("limits: the hub-label stage states its table sizes before computing them, and a refusal stops it",
+          "[limits][hub]") {
+    BakeOptions o;
+    o.n1 = 10;
+    o.compress = false;
+    BakeReport report;
+    const std::vector<uint8_t> blob = bakeMesh(bumpyTorus(120, 40), o, report);
+    const std::vector<uint8_t> graph(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end());
+    HubLabelSizes planned;
+    int plans = 0, progressBeforePlan = -1, progressCalls = 0;
+    const HubLabels hubs = computeHubLabels(
+        graph, [&](double) { ++progressCalls; },
+        [&](const HubLabelSizes& sizes) {
+            planned = sizes;
+            ++plans;
+            progressBeforePlan = progressCalls;
+        });
+    CHECK(plans == 1);
+    CHECK(progressBeforePlan == 0);
+    CHECK(progressCalls > 0);
+    REQUIRE(!hubs.columns.empty());
+    REQUIRE(!hubs.inner.empty());
+    CHECK(planned.labelEntries == hubs.columns.size());
+    CHECK(planned.innerEntries == hubs.inner.size());
+    CHECK(planned.innerNodes == hubs.innerNode.size());
+
+    // A refusal leaves before any label is computed.
+    progressCalls = 0;
+    CHECK_THROWS_AS(computeHubLabels(graph, [&](double) { ++progressCalls; },
+                                     [](const HubLabelSizes&) { throw BakeLimitError("refused"); }),
+                    BakeLimitError);
+    CHECK(progressCalls == 0);
+
+    // The limits on those sizes: the flatbuffer's 2 GiB, and the stage's memory under --max-memory.
+    CHECK_NOTHROW(checkHubLabelLimits(graph.size(), planned, 4800, BakeOptions(), residentBytes()));
+    HubLabelSizes huge;
+    huge.labelEntries = 1ull << 30;  // 2 GiB of steps alone
+    CHECK_THROWS_WITH(checkHubLabelLimits(1 << 20, huge, 2000000, BakeOptions(), 0),
+                      Catch::Contains("2 GiB limit") && Catch::Contains("without --hub-labels"));
+    BakeOptions tight;
+    tight.maxMemoryBytes = 1ull << 30;
+    HubLabelSizes large;
+    large.labelEntries = 100000000;  // computed as doubles: 800 MB, and steps after
+    CHECK_THROWS_WITH(checkHubLabelLimits(1 << 20, large, 1000000, tight, 1 << 20), Catch::Contains("--max-memory 1.0 GiB"));
+    CHECK_NOTHROW(checkHubLabelLimits(1 << 20, planned, 4800, tight, 1 << 20));
 }

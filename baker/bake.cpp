@@ -63,7 +63,8 @@ void validate(const Mesh& mesh, const BakeOptions& o) {
 std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, BakeReport& report,
                               const BakeProgress& reportProgress) {
     validate(mesh, options);
-    checkBakeLimits(verticesUsedByFaces(mesh), options);
+    const uint64_t vertices = verticesUsedByFaces(mesh);
+    checkBakeLimits(vertices, options);
     const BakeProgress progress = [&](const char* stage, double fraction) {
         checkMemoryDuringBake(options, stage);
         if (reportProgress) reportProgress(stage, fraction);
@@ -136,7 +137,6 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
     clock.end("landmarks");
     if (options.hubLabels) {
         if (progress) progress("hub labels", 0.0);
-        const uint64_t vertices = verticesUsedByFaces(mesh);
         const HubLabels hubs = computeHubLabels(
             buffer, [&](double f) { if (progress) progress("hub labels", f); },
             [&](const HubLabelSizes& sizes) {

@@ -372,12 +372,6 @@ uint16_t steps(double d, double scale) {
     return uint16_t(std::min(65534.0, std::floor(d / scale + 0.5)));
 }
 
-
-// Inner rows of first-layer patch f: Dijkstra inside f's second-layer node graph from
-// each of f's first-layer nodes, as the runtime's search relaxes rows (active nodes only).
-// The runs go over local ids (f's active nodes in increasing id, so ties settle as with
-// global ids) and f's second-layer node blocks unpacked once, in the order the graph
-// lists each node's patches.
 // The rows of first-layer patch f's inner matrix: the active nodes of its second-layer
 // patches (`children`), sorted.
 void innerNodesOf(const View& v, const std::vector<uint32_t>& children, std::vector<uint32_t>& nodes) {
@@ -393,7 +387,11 @@ void innerNodesOf(const View& v, const std::vector<uint32_t>& children, std::vec
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
 }
 
-// `nodes`: innerNodesOf f's children.
+// Inner rows of first-layer patch f (`nodes`: innerNodesOf its children): Dijkstra inside
+// f's second-layer node graph from each of f's first-layer nodes, as the runtime's search
+// relaxes rows (active nodes only). The runs go over local ids (f's active nodes in
+// increasing id, so ties settle as with global ids) and f's second-layer node blocks
+// unpacked once, in the order the graph lists each node's patches.
 void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children, const std::vector<uint32_t>& nodes,
                std::vector<double>& values) {
     const fb::PatchRecord& fr = v.first(f);

@@ -262,25 +262,31 @@ inline void exitsInBlock(const HubExit* exits, uint32_t count, const HubBlockRef
 }
 
 #if VG_HUB_AVX2
-void prefetchRows(const vg_graph& g, const HubBlockRef& r, const HubExit* exits, uint32_t exitCount) {
-    uint32_t begin, end;
-    exitsInBlock(exits, exitCount, r, &begin, &end);
+// Asks for the rows of exits [begin, end) in block r.
+void prefetchRows(const vg_graph& g, const HubBlockRef& r, const HubExit* exits, uint32_t begin, uint32_t end) {
     for (uint32_t e = begin; e < end; ++e) _mm_prefetch(reinterpret_cast<const char*>(columnRow(g, r, exits[e].hub)), _MM_HINT_T0);
 }
 
 VG_AVX2_TARGET void sourceColumnsAvx2(const vg_graph& g, const HubExit* exits, uint32_t exitCount,
                                       const HubBlockRef* blocks, uint32_t blockCount, uint16_t* d) {
+    // Each block's exit range is bisected once, the turn before its own (for its prefetch).
+    uint32_t begin = 0, end = 0;
+    if (blockCount > 0) exitsInBlock(exits, exitCount, blocks[0], &begin, &end);
     for (uint32_t i = 0; i < blockCount; ++i) {
         const HubBlockRef r = blocks[i];
-        if (i + 1 < blockCount) prefetchRows(g, blocks[i + 1], exits, exitCount);  // loads while this block adds
+        uint32_t nextBegin = 0, nextEnd = 0;
+        if (i + 1 < blockCount) {  // loads while this block adds
+            exitsInBlock(exits, exitCount, blocks[i + 1], &nextBegin, &nextEnd);
+            prefetchRows(g, blocks[i + 1], exits, nextBegin, nextEnd);
+        }
         __m256i acc = _mm256_set1_epi16(-1);
-        uint32_t begin, end;
-        exitsInBlock(exits, exitCount, r, &begin, &end);
         for (uint32_t e = begin; e < end; ++e) {
             const __m256i row = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(columnRow(g, r, exits[e].hub)));
             acc = _mm256_min_epu16(acc, _mm256_adds_epu16(row, _mm256_set1_epi16(short(exits[e].steps))));
         }
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + uint64_t(i) * kHubBlock), acc);
+        begin = nextBegin;
+        end = nextEnd;
     }
 }
 
@@ -288,19 +294,25 @@ VG_AVX2_TARGET void targetColumnsAvx2(const vg_graph& g, const uint16_t* d, cons
                                       const HubBlockRef* blocks, uint32_t blockCount, uint16_t* acc) {
     const __m256i none = _mm256_set1_epi16(-1);
     for (uint32_t e = 0; e < exitCount; ++e) _mm256_storeu_si256(reinterpret_cast<__m256i*>(acc + uint64_t(e) * kHubBlock), none);
+    uint32_t begin = 0, end = 0;  // as in sourceColumnsAvx2
+    if (blockCount > 0) exitsInBlock(exits, exitCount, blocks[0], &begin, &end);
     for (uint32_t i = 0; i < blockCount; ++i) {
         const HubBlockRef r = blocks[i];
         const __m256i di = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(d + uint64_t(i) * kHubBlock));
         const __m128i half = _mm_min_epu16(_mm256_castsi256_si128(di), _mm256_extracti128_si256(di, 1));
-        if (outOfRoom(g, r, uint16_t(_mm_cvtsi128_si32(_mm_minpos_epu16(half))))) continue;
-        if (i + 1 < blockCount) prefetchRows(g, blocks[i + 1], exits, exitCount);
-        uint32_t begin, end;
-        exitsInBlock(exits, exitCount, r, &begin, &end);
-        for (uint32_t e = begin; e < end; ++e) {
+        const bool read = !outOfRoom(g, r, uint16_t(_mm_cvtsi128_si32(_mm_minpos_epu16(half))));
+        uint32_t nextBegin = 0, nextEnd = 0;
+        if (i + 1 < blockCount) {
+            exitsInBlock(exits, exitCount, blocks[i + 1], &nextBegin, &nextEnd);
+            if (read) prefetchRows(g, blocks[i + 1], exits, nextBegin, nextEnd);
+        }
+        for (uint32_t e = begin; read && e < end; ++e) {
             const __m256i row = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(columnRow(g, r, exits[e].hub)));
             __m256i* a = reinterpret_cast<__m256i*>(acc + uint64_t(e) * kHubBlock);
             _mm256_storeu_si256(a, _mm256_min_epu16(_mm256_loadu_si256(a), _mm256_adds_epu16(row, di)));
         }
+        begin = nextBegin;
+        end = nextEnd;
     }
 }
 #endif

@@ -179,10 +179,26 @@ void innerSteps(const vg_graph& g, const vg_workspace& ws, uint32_t x, const Sid
         if (r != kNone) lowerStepsOn(g, v, innerRowData(g, first, r), K, 0);
         return;
     }
+    // x's row entries lie a matrix column apart, a cache line each: they are gathered first,
+    // in a loop of independent loads that the processor overlaps, and only then the inner
+    // rows taken (one row after each entry would leave one miss outstanding at a time).
+    constexpr uint32_t kChunk = 64;
+    uint16_t bases[kChunk];
+    uint32_t rows[kChunk], count = 0;
+    auto flush = [&] {
+        for (uint32_t i = 0; i < count; ++i) lowerStepsOn(g, v, innerRowData(g, first, rows[i]), K, bases[i]);
+        count = 0;
+    };
     forEachRowNode(g, ws, x, [&](uint32_t, float d, uint32_t r) {
         const uint16_t base = toSteps(d, g.hubLabelScale);
-        if (base != kNoStep && r != kNone) lowerStepsOn(g, v, innerRowData(g, first, r), K, base);
+        if (base == kNoStep || r == kNone) return;
+        const uint16_t* row = innerRowData(g, first, r);
+        for (uint32_t k = 0; k < K; k += 32) __builtin_prefetch(row + k);
+        bases[count] = base;
+        rows[count++] = r;
+        if (count == kChunk) flush();
     });
+    flush();
 }
 
 uint16_t lanesMinimum(const uint16_t* lanes) {

@@ -4,7 +4,7 @@
 # labels, and the default graph with hub labels (coded too). Per profile: bake wall time and peak
 # memory (2 threads), bytes per vertex, golden-pair error of the fast mode and of the
 # thesis's bidirectional search, and `vorogeo bench --runtime-only` on random pairs (the
-# fast mode and the thesis's search taking turns on every pair) for two seeds.
+# fast mode and the thesis's search taking turns on blocks of 500 pairs) for two seeds.
 # usage: scripts/bench-issue7.sh [SHARED_DIR] [MESH_NAME]   (KEEP=dir keeps the blobs; VOROGEO=path
 # runs another build of the tool)
 set -euo pipefail

@@ -4,7 +4,7 @@
 # (x4, x16: made with `vorogeo subdivide`, never stored in the repository). Each mesh is
 # baked with defaults and THREADS threads, then `vorogeo bench --runtime-only` times
 # PAIRS random point-to-point queries (the directed search and the thesis's bidirectional
-# one taking turns on every pair, with the ratio of their times) and 5 one-to-all fields
+# one taking turns on blocks of 500 pairs, with the ratio of their times) and 5 one-to-all fields
 # (1 thread).
 # usage: scripts/bench-scaling.sh [SHARED_DIR] [THREADS] [PAIRS]
 # KEEP=DIR keeps the meshes, blobs and reports there (they take ~1.2 GB with x16);

@@ -240,7 +240,8 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
                             bytesOf(faceTwin) + bytesOf(partition.faceSecond) + bytesOf(vertexHalfedge) +
                             bytesOf(hubs.tree) + bytesOf(hubs.firstLeaf) + bytesOf(hubs.nodeHub) +
                             bytesOf(hubs.columnBegin) + bytesOf(hubs.columns) + bytesOf(hubs.innerBegin) +
-                            bytesOf(hubs.innerNode) + bytesOf(hubs.innerMatrixBegin) + bytesOf(hubs.inner) + bytesOf(hubs.blockBounds) + 4096,
+                            bytesOf(hubs.innerNode) + bytesOf(hubs.innerMatrixBegin) + bytesOf(hubs.inner) + bytesOf(hubs.blockBounds) +
+                            bytesOf(hubs.exitPatchBegin) + bytesOf(hubs.exitListBegin) + bytesOf(hubs.exitLists) + 4096,
                         V);
     flatbuffers::FlatBufferBuilder b(size_t(64) << 20);
     auto posV = b.CreateVector(positions);
@@ -271,9 +272,9 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     std::vector<fb::HubTreeNode> hubTree;
     for (const HubTreeNode& t : hubs.tree) hubTree.emplace_back(t.parent, t.hubBegin, t.hubCount, t.pathBegin);
     flatbuffers::Offset<flatbuffers::Vector<const fb::HubTreeNode*>> htV;
-    flatbuffers::Offset<flatbuffers::Vector<uint32_t>> hlfV, nhV, hibV, hinV;
+    flatbuffers::Offset<flatbuffers::Vector<uint32_t>> hlfV, nhV, hibV, hinV, hepV, helV;
     flatbuffers::Offset<flatbuffers::Vector<uint64_t>> hlbV, himV;
-    flatbuffers::Offset<flatbuffers::Vector<uint16_t>> hlV, hiV;
+    flatbuffers::Offset<flatbuffers::Vector<uint16_t>> hlV, hiV, hexV;
     flatbuffers::Offset<flatbuffers::Vector<float>> hbbV;
     if (withHubs) {
         htV = b.CreateVectorOfStructs(hubTree);
@@ -288,6 +289,11 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
         himV = b.CreateVector(hubs.innerMatrixBegin);
         hiV = b.CreateVector(hubs.inner);
         hbbV = b.CreateVector(hubs.blockBounds);
+        if (!hubs.exitPatchBegin.empty()) {
+            hepV = b.CreateVector(hubs.exitPatchBegin);
+            helV = b.CreateVector(hubs.exitListBegin);
+            hexV = b.CreateVector(hubs.exitLists);
+        }
     }
     fb::GraphBuilder g(b);
     g.add_vertex_count(V);
@@ -333,6 +339,11 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
         g.add_hub_inner_matrix_begin(himV);
         g.add_hub_inner(hiV);
         g.add_hub_block_bounds(hbbV);
+        if (!hubs.exitPatchBegin.empty()) {
+            g.add_hub_exit_patch_begin(hepV);
+            g.add_hub_exit_list_begin(helV);
+            g.add_hub_exit_lists(hexV);
+        }
     }
     fb::FinishGraphBuffer(b, g.Finish());
     return std::vector<uint8_t>(b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize());

@@ -7,6 +7,7 @@
 #include <limits>
 #include <mutex>
 
+#include "hub_exit_lists.h"
 #include "parallel.h"
 #include "vorogeo_distance_coding.h"
 #include "vorogeo_generated.h"
@@ -631,6 +632,7 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
         for (double d : innerValues[f]) out.inner.push_back(steps(d, out.labelScale));
         out.innerMatrixBegin.push_back(out.inner.size());
     }
+    computeHubExitLists(flatbuffer, out);
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
 }

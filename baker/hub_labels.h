@@ -55,6 +55,14 @@ struct HubLabels {
     // largest distance of its hubs (-inf, +inf where one is unreachable). The runtime reads a
     // label only over the blocks that can lie near a shortest path.
     std::vector<float> blockBounds;
+    // Per second-layer patch q, the exits a query needs in each block of q's tree path
+    // (hub_exit_lists.h): exitPatchBegin (second-layer patches + 1) into exitListBegin,
+    // q's lists for its path's blocks from the root down (a tree node's blocks in order),
+    // each [exitListBegin[i], exitListBegin[i + 1]) in exitLists: the exits' indices among
+    // q's first-layer patch's slots that are hubs, in hub order, increasing. Empty: none.
+    std::vector<uint32_t> exitPatchBegin;
+    std::vector<uint32_t> exitListBegin;
+    std::vector<uint16_t> exitLists;
     double seconds = 0;
 };
 

@@ -4,6 +4,7 @@
 // blob whose label tables do not add up is refused.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -13,6 +14,8 @@
 #include "bake.h"
 #include "blob_test_helpers.h"
 #include "generators.h"
+#include "hub_exit_lists.h"
+#include "hub_labels.h"
 #include "runtime_graph.h"
 #include "vg_hub_labels.h"
 #include "vg_lower_bound.h"
@@ -100,6 +103,7 @@ TEST_CASE("hub labels: the pruned reads answer like reading every label", "[hub]
         const std::vector<uint8_t> blob = delta == 0.0 ? labelledBlob() : bakeLabelled(false, 0, delta);
         RuntimeGraph g = openOrFail(blob);
         REQUIRE(g.graph()->hubBlockBounds != nullptr);
+        REQUIRE(g.graph()->hubExitLists != nullptr);  // the pruned reads take the exit lists too
         RuntimeWorkspace ws(g.graph());
         const uint32_t V = vg_vertex_count(g.graph());
         std::mt19937 rng(11);
@@ -118,6 +122,81 @@ TEST_CASE("hub labels: the pruned reads answer like reading every label", "[hub]
         CHECK(answered > 1500);
         CHECK(differ == 0);
     }
+}
+
+TEST_CASE("hub labels: the exit lists name a few exits per block and answer as every exit does", "[hub]") {
+    // Per second-layer patch and block, only the exits that are the best way from some node
+    // of the patch to some hub of the block (baker/hub_exit_lists.h). Reading those alone
+    // gives the same answers as reading every exit's rows, bit for bit, with the bounds on.
+    RuntimeGraph g = openOrFail(labelledBlob());
+    const vg_graph& graph = *g.graph();
+    REQUIRE(graph.hubExitLists != nullptr);
+    vg_graph everyExit = graph;  // the same tables without the lists
+    everyExit.hubExitLists = nullptr;
+    RuntimeWorkspace ws(g.graph());
+
+    // The lists are a small part of the exits the block's rows cover.
+    uint64_t listed = 0, covered = 0;
+    for (uint32_t q = 0; q < graph.secondCount; ++q) {
+        const uint32_t p = graph.second[q].parent;
+        std::vector<uint32_t> exitHubs;  // p's exits in hub order (the lists' indices)
+        for (uint32_t k = 0; k < graph.first[p].slotCount; ++k) {
+            const uint32_t hub = graph.nodeHub[graph.slots[graph.first[p].slotBegin + k]];
+            if (hub != vg::kNone) exitHubs.push_back(hub);
+        }
+        std::sort(exitHubs.begin(), exitHubs.end());
+        std::vector<uint32_t> path;  // root first, as the lists are
+        for (uint32_t t = graph.hubFirstLeaf[p]; t != vg::kNone; t = graph.hubTree[t].parent) path.push_back(t);
+        std::reverse(path.begin(), path.end());
+        uint32_t list = graph.hubExitPatchBegin[q];
+        for (const uint32_t t : path) {
+            const uint32_t lo = graph.hubTree[t].hubBegin,
+                           hi = vg::hubSubtreeEnd(graph.hubTree, graph.hubTreeCount, graph.hubCount, t);
+            const uint64_t inRange = uint64_t(std::count_if(exitHubs.begin(), exitHubs.end(),
+                                                            [&](uint32_t h) { return h >= lo && h < hi; }));
+            for (uint32_t b = 0; b < (graph.hubTree[t].hubCount + vg::kHubBlock - 1) / vg::kHubBlock; ++b, ++list) {
+                for (uint32_t m = graph.hubExitListBegin[list]; m < graph.hubExitListBegin[list + 1]; ++m)
+                    CHECK((exitHubs[graph.hubExitLists[m]] >= lo && exitHubs[graph.hubExitLists[m]] < hi));
+                listed += graph.hubExitListBegin[list + 1] - graph.hubExitListBegin[list];
+                covered += inRange;
+            }
+        }
+        CHECK(list == graph.hubExitPatchBegin[q + 1]);
+    }
+    CHECK(listed > 0);
+    CHECK(double(listed) < 0.5 * double(covered));
+
+    const uint32_t V = vg_vertex_count(g.graph());
+    std::mt19937 rng(13);
+    std::uniform_int_distribution<uint32_t> pick(0, V - 1);
+    size_t answered = 0, differ = 0;
+    for (int i = 0; i < 3000; ++i) {
+        const uint32_t s = pick(rng), t = pick(rng);
+        float withLists = 0, without = 0;
+        const bool a = vg::hubDistance(graph, *ws.get(), s, t, __builtin_inff(), &withLists, true);
+        const bool b = vg::hubDistance(everyExit, *ws.get(), s, t, __builtin_inff(), &without, true);
+        REQUIRE(a == b);
+        if (!a) continue;
+        ++answered;
+        differ += withLists != without;
+    }
+    CHECK(answered > 1500);
+    CHECK(differ == 0);
+}
+
+TEST_CASE("hub labels: the exit lists are the same with and without AVX2 and as stored", "[hub]") {
+    const std::vector<uint8_t>& blob = labelledBlob();  // uncompressed: the flatbuffer follows the header
+    const std::vector<uint8_t> flatbuffer(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end());
+    HubLabels labels = computeHubLabels(flatbuffer);
+    REQUIRE(!labels.exitLists.empty());
+    HubLabels portable = labels;
+    computeHubExitLists(flatbuffer, portable, false);
+    CHECK(portable.exitPatchBegin == labels.exitPatchBegin);
+    CHECK(portable.exitListBegin == labels.exitListBegin);
+    CHECK(portable.exitLists == labels.exitLists);
+    const fb::Graph* g = fb::GetGraph(flatbuffer.data());
+    REQUIRE(g->hub_exit_lists() != nullptr);
+    CHECK(std::vector<uint16_t>(g->hub_exit_lists()->begin(), g->hub_exit_lists()->end()) == labels.exitLists);
 }
 
 TEST_CASE("hub labels: an endpoint's landmark distances through its patch's first-layer nodes", "[hub]") {
@@ -275,4 +354,15 @@ TEST_CASE("hub labels: tables that do not add up are refused", "[hub]") {
     CHECK(refused(bounds + 4, 0x7FC00000u));                                 // a NaN centre
     if (g->landmark_scale() && g->landmark_scale()->size() > 0)
         CHECK(refused(bounds + 16, 0x7F800000u));                            // a range from +inf (above its end)
+    REQUIRE(g->hub_exit_lists() != nullptr);
+    const size_t lists = offsetOf(g->hub_exit_lists()->data());
+    CHECK(refused(lists, 0xFFFFu));                                          // an exit past the patch's exits
+    uint32_t pair = 0;  // the first list with two entries: make them equal
+    while (pair + 1 < g->hub_exit_list_begin()->size() && g->hub_exit_list_begin()->Get(pair + 1) - g->hub_exit_list_begin()->Get(pair) < 2) ++pair;
+    REQUIRE(pair + 1 < g->hub_exit_list_begin()->size());
+    const uint32_t at = g->hub_exit_list_begin()->Get(pair), second = g->hub_exit_lists()->Get(at + 1);
+    CHECK(refused(lists + 2 * size_t(at), second | (second << 16)));        // not increasing
+    CHECK(refused(offsetOf(g->hub_exit_patch_begin()->data()) + 4, g->hub_exit_patch_begin()->Get(1) + 1));  // a list too many
+    CHECK(refused(offsetOf(g->hub_exit_list_begin()->data()) + 4, 0xFFFFFFF0u));  // a list past the end
+    CHECK(refused(lists - 4, g->hub_exit_lists()->size() - 1));             // an entry short
 }

@@ -1,5 +1,6 @@
 #include "blob_info.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -38,13 +39,14 @@ int printBlobInfo(const std::string& path, bool json) {
                     "\"bytes_per_vertex\":%.2f,\"vertices\":%u,\"nodes\":%zu,\"nodes_pruned_second\":%zu,"
                     "\"first_patches\":%zu,\"second_patches\":%zu,\"first_layer_node_slots\":%zu,"
                     "\"seed\":%llu,\"n1\":%u,\"n2\":%u,\"delta\":%g,\"margin_rings\":%u,\"bbox_diagonal\":%g,"
-                    "\"hubs\":%zu,\"hub_label_entries\":%zu,\"hub_inner_entries\":%zu}\n",
+                    "\"hubs\":%zu,\"hub_label_entries\":%zu,\"hub_inner_entries\":%zu,\"hub_exit_list_entries\":%zu}\n",
                     path.c_str(), blob.formatVersion, blob.compressed ? "true" : "false", blob.coded ? "true" : "false",
                     fileBytes,
                     blob.flatbuffer.size(), V ? double(fileBytes) / V : 0.0, V, size(g->node_vertex()), secondPruned,
                     size(g->first_patches()), size(g->second_patches()), size(g->node_first()),
                     (unsigned long long)g->seed(), g->n1(), g->n2(), double(g->delta()), g->margin_rings(),
-                    double(g->bbox_diagonal()), hubs, size(g->hub_columns()), size(g->hub_inner()));
+                    double(g->bbox_diagonal()), hubs, size(g->hub_columns()), size(g->hub_inner()),
+                    size(g->hub_exit_lists()));
         return 0;
     }
     std::printf("%s: vorogeo blob, format version %u, %s, %zu bytes (%.1f per vertex; flatbuffer %zu bytes)\n",
@@ -59,9 +61,16 @@ int printBlobInfo(const std::string& path, bool json) {
     std::printf("  baked with      seed %llu, n1 %s, n2 %s, delta %g, margin rings %u\n", (unsigned long long)g->seed(),
                 g->n1() ? std::to_string(g->n1()).c_str() : "auto", g->n2() ? std::to_string(g->n2()).c_str() : "auto",
                 double(g->delta()), g->margin_rings());
-    if (hubs > 0)
+    if (hubs > 0) {
         std::printf("  hub labels      %zu hubs, %zu tree nodes, %zu label entries (blocks padded to 16), %zu inner entries\n", hubs,
                     size(g->hub_tree()), size(g->hub_columns()), size(g->hub_inner()));
+        if (g->hub_exit_lists())
+            std::printf("  exit lists      %zu entries in %zu lists (%.1f per list)\n", size(g->hub_exit_lists()),
+                        size(g->hub_exit_list_begin()) - 1,
+                        double(size(g->hub_exit_lists())) / double(std::max<size_t>(1, size(g->hub_exit_list_begin()) - 1)));
+        else
+            std::printf("  exit lists      none (label queries read every exit's rows)\n");
+    }
     else
         std::printf("  hub labels      none (point-to-point queries search)\n");
     return 0;

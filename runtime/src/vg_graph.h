@@ -96,6 +96,11 @@ struct vg_graph {
     const uint64_t* hubInnerMatrixBegin;  // first-layer patches + 1, into hubInner
     const uint16_t* hubInner;
     const float* hubBlockBounds;        // per block of kHubBlock hubs: sphere, landmark ranges; null: none
+    // Per second-layer patch, the exits a label query needs in each block of its tree path
+    // (vorogeo.fbs hub_exit_*); null: none, every exit is read.
+    const uint32_t* hubExitPatchBegin;  // second-layer patches + 1, into hubExitListBegin
+    const uint32_t* hubExitListBegin;   // into hubExitLists
+    const uint16_t* hubExitLists;
 
     // Set by vg_open_file only: what vg_close_file releases.
     vg_allocator fileAllocator;

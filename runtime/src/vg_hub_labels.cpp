@@ -226,39 +226,8 @@ uint32_t blocksOf(const HubTreeNode& node) { return (node.hubCount + kHubBlock -
 // Block b of tree node x: its matrix has a row per hub of x's subtree.
 HubBlockRef blockRef(const vg_graph& g, const vg_workspace& ws, uint32_t x, uint32_t b) {
     const uint32_t lo = g.hubTree[x].hubBegin, hi = ws.hubSubtreeEnd[x];
-    return HubBlockRef{g.hubColumnBegin[x] + uint64_t(b) * kHubBlock * (hi - lo), lo, hi, __builtin_inff()};
-}
-
-// d[16 i + j]: the source's distance to hub j of block i, the best over its exits (the
-// exit's steps plus its row).
-void sourceColumns(const vg_graph& g, const HubExit* exits, uint32_t exitCount, const HubBlockRef* blocks,
-                   uint32_t blockCount, uint16_t* d) {
-    for (uint32_t i = 0; i < blockCount; ++i) {
-        uint16_t* acc = d + uint64_t(i) * kHubBlock;
-        for (uint32_t j = 0; j < kHubBlock; ++j) acc[j] = kNoStep;
-        for (uint32_t e = 0; e < exitCount; ++e)
-            if (inBlock(blocks[i], exits[e].hub)) lowerSteps(acc, columnRow(g, blocks[i], exits[e].hub), kHubBlock, exits[e].steps);
-    }
-}
-
-// acc[16 e + j]: the source's distance through hub j of some block to target exit e, the
-// best over the blocks (its lanes' minimum is the source's distance to the exit).
-void targetColumns(const vg_graph& g, const uint16_t* d, const HubExit* exits, uint32_t exitCount,
-                   const HubBlockRef* blocks, uint32_t blockCount, uint16_t* acc) {
-    for (uint64_t k = 0; k < uint64_t(exitCount) * kHubBlock; ++k) acc[k] = kNoStep;
-    for (uint32_t i = 0; i < blockCount; ++i) {
-        const uint16_t* di = d + uint64_t(i) * kHubBlock;
-        if (outOfRoom(g, blocks[i], lanesMinimum(di))) continue;
-        for (uint32_t e = 0; e < exitCount; ++e) {
-            if (!inBlock(blocks[i], exits[e].hub)) continue;
-            const uint16_t* row = columnRow(g, blocks[i], exits[e].hub);
-            uint16_t* a = acc + uint64_t(e) * kHubBlock;
-            for (uint32_t j = 0; j < kHubBlock; ++j) {
-                const uint16_t c = saturatingSum(di[j], row[j]);
-                a[j] = c < a[j] ? c : a[j];
-            }
-        }
-    }
+    return HubBlockRef{g.hubColumnBegin[x] + uint64_t(b) * kHubBlock * (hi - lo), lo, hi, ws.hubBlocksAbove[x] + b,
+                       __builtin_inff()};
 }
 
 // The exits (in hub order) with a row in block r: [*begin, *end), found by bisection, so
@@ -277,97 +246,207 @@ inline void exitsInBlock(const HubExit* exits, uint32_t count, const HubBlockRef
     *end = *begin + firstExitFrom(exits + *begin, count - *begin, r.hi);
 }
 
-#if VG_HUB_AVX2
-// Asks for the rows of exits [begin, end) in block r.
-void prefetchRows(const vg_graph& g, const HubBlockRef& r, const HubExit* exits, uint32_t begin, uint32_t end) {
-    for (uint32_t e = begin; e < end; ++e) _mm_prefetch(reinterpret_cast<const char*>(columnRow(g, r, exits[e].hub)), _MM_HINT_T0);
+// The exits of one query side, and which of them have rows in a block: every exit whose
+// hub the block's rows cover or, where the blob has exit lists, those that the lists of
+// the side's second-layer patches name for the block (baker/hub_exit_lists.h: the others
+// are never the best way from the patch to any of the block's hubs, nor from them back).
+// With lists, `exits` holds every exit candidate of the side's first-layer patch in hub
+// order (the lists' indices), those ruled out by the bounds with steps kNoStep; without,
+// only the others.
+struct SideRows {
+    const HubExit* exits;
+    uint32_t count;
+    uint32_t listCount;  // 0: no lists
+    uint32_t listStart[kMaxSidePatches];  // per patch of the side: its first list in hubExitListBegin
+};
+
+// Indices into side.exits of the exits whose rows block r reads, into out; their number.
+// An entry whose hub the block has no row for is skipped: no list reads past a matrix.
+uint32_t blockRows(const vg_graph& g, const SideRows& side, const HubBlockRef& r, uint16_t* out) {
+    uint32_t n = 0;
+    if (side.listCount == 0) {
+        uint32_t begin, end;
+        exitsInBlock(side.exits, side.count, r, &begin, &end);
+        for (uint32_t e = begin; e < end; ++e) out[n++] = uint16_t(e);
+        return n;
+    }
+    for (uint32_t i = 0; i < side.listCount; ++i) {
+        const uint32_t list = side.listStart[i] + r.pathIndex;
+        // Branch-free: whether the bounds kept an exit is a coin toss to the predictor.
+        for (uint32_t m = g.hubExitListBegin[list]; m < g.hubExitListBegin[list + 1]; ++m) {
+            const uint16_t e = g.hubExitLists[m];
+            const HubExit& x = side.exits[e < side.count ? e : 0];
+            out[n] = e;
+            n += uint32_t(e < side.count) & uint32_t(x.steps != kNoStep) & uint32_t(inBlock(r, x.hub));
+        }
+    }
+    return n;
 }
 
-VG_AVX2_TARGET void sourceColumnsAvx2(const vg_graph& g, const HubExit* exits, uint32_t exitCount,
-                                      const HubBlockRef* blocks, uint32_t blockCount, uint16_t* d) {
-    // Each block's exit range is bisected once, the turn before its own (for its prefetch).
-    uint32_t begin = 0, end = 0;
-    if (blockCount > 0) exitsInBlock(exits, exitCount, blocks[0], &begin, &end);
+// d[16 i + j]: the source's distance to hub j of block i, the best over its exits (the
+// exit's steps plus its row). `rows`: scratch for one block's exits.
+void sourceColumns(const vg_graph& g, const SideRows& side, const HubBlockRef* blocks, uint32_t blockCount,
+                   uint16_t* rows, uint16_t* d) {
     for (uint32_t i = 0; i < blockCount; ++i) {
-        const HubBlockRef r = blocks[i];
-        uint32_t nextBegin = 0, nextEnd = 0;
-        if (i + 1 < blockCount) {  // loads while this block adds
-            exitsInBlock(exits, exitCount, blocks[i + 1], &nextBegin, &nextEnd);
-            prefetchRows(g, blocks[i + 1], exits, nextBegin, nextEnd);
+        uint16_t* acc = d + uint64_t(i) * kHubBlock;
+        for (uint32_t j = 0; j < kHubBlock; ++j) acc[j] = kNoStep;
+        const uint32_t n = blockRows(g, side, blocks[i], rows);
+        for (uint32_t m = 0; m < n; ++m) {
+            const HubExit& e = side.exits[rows[m]];
+            lowerSteps(acc, columnRow(g, blocks[i], e.hub), kHubBlock, e.steps);
         }
-        __m256i acc = _mm256_set1_epi16(-1);
-        for (uint32_t e = begin; e < end; ++e) {
-            const __m256i row = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(columnRow(g, r, exits[e].hub)));
-            acc = _mm256_min_epu16(acc, _mm256_adds_epu16(row, _mm256_set1_epi16(short(exits[e].steps))));
-        }
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + uint64_t(i) * kHubBlock), acc);
-        begin = nextBegin;
-        end = nextEnd;
     }
 }
 
-VG_AVX2_TARGET void targetColumnsAvx2(const vg_graph& g, const uint16_t* d, const HubExit* exits, uint32_t exitCount,
-                                      const HubBlockRef* blocks, uint32_t blockCount, uint16_t* acc) {
+// acc[16 e + j]: the source's distance through hub j of some block to target exit e, the
+// best over the blocks (its lanes' minimum is the source's distance to the exit).
+void targetColumns(const vg_graph& g, const uint16_t* d, const SideRows& side, const HubBlockRef* blocks,
+                   uint32_t blockCount, uint16_t* rows, uint16_t* acc) {
+    for (uint64_t k = 0; k < uint64_t(side.count) * kHubBlock; ++k) acc[k] = kNoStep;
+    for (uint32_t i = 0; i < blockCount; ++i) {
+        const uint16_t* di = d + uint64_t(i) * kHubBlock;
+        if (outOfRoom(g, blocks[i], lanesMinimum(di))) continue;
+        const uint32_t n = blockRows(g, side, blocks[i], rows);
+        for (uint32_t m = 0; m < n; ++m) {
+            const uint16_t* row = columnRow(g, blocks[i], side.exits[rows[m]].hub);
+            uint16_t* a = acc + uint64_t(rows[m]) * kHubBlock;
+            for (uint32_t j = 0; j < kHubBlock; ++j) {
+                const uint16_t c = saturatingSum(di[j], row[j]);
+                a[j] = c < a[j] ? c : a[j];
+            }
+        }
+    }
+}
+
+#if VG_HUB_AVX2
+// Asks for the rows of the n exits in rows[] in block r.
+void prefetchRows(const vg_graph& g, const HubBlockRef& r, const SideRows& side, const uint16_t* rows, uint32_t n) {
+    for (uint32_t m = 0; m < n; ++m)
+        _mm_prefetch(reinterpret_cast<const char*>(columnRow(g, r, side.exits[rows[m]].hub)), _MM_HINT_T0);
+}
+
+// The same numbers; each block's exits are found the turn before its own, for its
+// prefetch (two scratch buffers, `rows` and `nextRows`, take turns).
+VG_AVX2_TARGET void sourceColumnsAvx2(const vg_graph& g, const SideRows& side, const HubBlockRef* blocks,
+                                      uint32_t blockCount, uint16_t* rows, uint16_t* nextRows, uint16_t* d) {
+    uint32_t n = blockCount > 0 ? blockRows(g, side, blocks[0], rows) : 0;
+    for (uint32_t i = 0; i < blockCount; ++i) {
+        const HubBlockRef r = blocks[i];
+        uint32_t nextN = 0;
+        if (i + 1 < blockCount) {  // loads while this block adds
+            nextN = blockRows(g, side, blocks[i + 1], nextRows);
+            prefetchRows(g, blocks[i + 1], side, nextRows, nextN);
+        }
+        __m256i acc = _mm256_set1_epi16(-1);
+        for (uint32_t m = 0; m < n; ++m) {
+            const HubExit& e = side.exits[rows[m]];
+            const __m256i row = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(columnRow(g, r, e.hub)));
+            acc = _mm256_min_epu16(acc, _mm256_adds_epu16(row, _mm256_set1_epi16(short(e.steps))));
+        }
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + uint64_t(i) * kHubBlock), acc);
+        uint16_t* t = rows;
+        rows = nextRows;
+        nextRows = t;
+        n = nextN;
+    }
+}
+
+VG_AVX2_TARGET void targetColumnsAvx2(const vg_graph& g, const uint16_t* d, const SideRows& side,
+                                      const HubBlockRef* blocks, uint32_t blockCount, uint16_t* rows,
+                                      uint16_t* nextRows, uint16_t* acc) {
     const __m256i none = _mm256_set1_epi16(-1);
-    for (uint32_t e = 0; e < exitCount; ++e) _mm256_storeu_si256(reinterpret_cast<__m256i*>(acc + uint64_t(e) * kHubBlock), none);
-    uint32_t begin = 0, end = 0;  // as in sourceColumnsAvx2
-    if (blockCount > 0) exitsInBlock(exits, exitCount, blocks[0], &begin, &end);
+    for (uint32_t e = 0; e < side.count; ++e) _mm256_storeu_si256(reinterpret_cast<__m256i*>(acc + uint64_t(e) * kHubBlock), none);
+    uint32_t n = blockCount > 0 ? blockRows(g, side, blocks[0], rows) : 0;  // as in sourceColumnsAvx2
     for (uint32_t i = 0; i < blockCount; ++i) {
         const HubBlockRef r = blocks[i];
         const __m256i di = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(d + uint64_t(i) * kHubBlock));
         const __m128i half = _mm_min_epu16(_mm256_castsi256_si128(di), _mm256_extracti128_si256(di, 1));
         const bool read = !outOfRoom(g, r, uint16_t(_mm_cvtsi128_si32(_mm_minpos_epu16(half))));
-        uint32_t nextBegin = 0, nextEnd = 0;
+        uint32_t nextN = 0;
         if (i + 1 < blockCount) {
-            exitsInBlock(exits, exitCount, blocks[i + 1], &nextBegin, &nextEnd);
-            if (read) prefetchRows(g, blocks[i + 1], exits, nextBegin, nextEnd);
+            nextN = blockRows(g, side, blocks[i + 1], nextRows);
+            if (read) prefetchRows(g, blocks[i + 1], side, nextRows, nextN);
         }
-        for (uint32_t e = begin; read && e < end; ++e) {
-            const __m256i row = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(columnRow(g, r, exits[e].hub)));
-            __m256i* a = reinterpret_cast<__m256i*>(acc + uint64_t(e) * kHubBlock);
+        for (uint32_t m = 0; read && m < n; ++m) {
+            const __m256i row = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(columnRow(g, r, side.exits[rows[m]].hub)));
+            __m256i* a = reinterpret_cast<__m256i*>(acc + uint64_t(rows[m]) * kHubBlock);
             _mm256_storeu_si256(a, _mm256_min_epu16(_mm256_loadu_si256(a), _mm256_adds_epu16(row, di)));
         }
-        begin = nextBegin;
-        end = nextEnd;
+        uint16_t* t = rows;
+        rows = nextRows;
+        nextRows = t;
+        n = nextN;
     }
 }
 #endif
 
-void sourceColumnsOn(const vg_graph& g, const HubExit* exits, uint32_t exitCount, const HubBlockRef* blocks,
+void sourceColumnsOn(const vg_graph& g, const vg_workspace& ws, const SideRows& side, const HubBlockRef* blocks,
                      uint32_t blockCount, uint16_t* d) {
+    uint16_t* rows = ws.hubBlockRows;
 #if VG_HUB_AVX2
-    if (g.avx2) return sourceColumnsAvx2(g, exits, exitCount, blocks, blockCount, d);
+    if (g.avx2) return sourceColumnsAvx2(g, side, blocks, blockCount, rows, rows + ws.hubBlockRowsHalf, d);
 #endif
-    sourceColumns(g, exits, exitCount, blocks, blockCount, d);
+    sourceColumns(g, side, blocks, blockCount, rows, d);
 }
 
-void targetColumnsOn(const vg_graph& g, const uint16_t* d, const HubExit* exits, uint32_t exitCount,
+void targetColumnsOn(const vg_graph& g, const vg_workspace& ws, const uint16_t* d, const SideRows& side,
                      const HubBlockRef* blocks, uint32_t blockCount, uint16_t* acc) {
+    uint16_t* rows = ws.hubBlockRows;
 #if VG_HUB_AVX2
-    if (g.avx2) return targetColumnsAvx2(g, d, exits, exitCount, blocks, blockCount, acc);
+    if (g.avx2) return targetColumnsAvx2(g, d, side, blocks, blockCount, rows, rows + ws.hubBlockRowsHalf, acc);
 #endif
-    targetColumns(g, d, exits, exitCount, blocks, blockCount, acc);
+    targetColumns(g, d, side, blocks, blockCount, rows, acc);
 }
 
-// The exits of a side: a hub itself, or the slots of its first-layer patch that are hubs,
+// Asks for what a query will read of side x's exit lists on the common tree path (down to
+// `lca`): the first lists of each of x's patches, in one run. A list is a few dozen bytes
+// somewhere in megabytes, so each would otherwise be a miss of its own. `stage` 0 asks for
+// the list offsets, 1 (later, once they have arrived) for the lists.
+void prefetchExitLists(const vg_graph& g, const vg_workspace& ws, uint32_t x, const Side& side, uint32_t lca,
+                       int stage) {
+    if (g.hubExitLists == nullptr || side.hub != kNone) return;
+    const uint32_t lists = ws.hubBlocksAbove[lca] + blocksOf(g.hubTree[lca]);
+    forEachPatchOf(g, x, [&](uint32_t patch, uint32_t) {
+        const uint32_t* begin = g.hubExitListBegin + g.hubExitPatchBegin[patch];
+        const char* from = stage == 0 ? reinterpret_cast<const char*>(begin)
+                                      : reinterpret_cast<const char*>(g.hubExitLists + begin[0]);
+        const char* to = stage == 0 ? reinterpret_cast<const char*>(begin + lists + 1)
+                                    : reinterpret_cast<const char*>(g.hubExitLists + begin[lists]);
+        for (const char* p = from; p < to + 64; p += 64) __builtin_prefetch(p);
+    });
+}
+
+// The exits of side x: a hub itself, or the slots of its first-layer patch that are hubs,
 // reached (v[k], the side's distance to slot k, not kNoStep) and with a lower bound
 // (cost, per exit candidate) within `upper`; in hub order, so that a block's rows are read
-// forward. Returns their number.
-uint32_t sideExits(const vg_graph& g, const vg_workspace& ws, const Side& side, const uint16_t* v, const float* cost,
-                   float upper, HubExit* exits) {
+// forward. With `lists` (and exit lists in the blob, and x on at most kMaxSidePatches
+// second-layer patches), every candidate, the others with steps kNoStep, and x's patches'
+// lists (SideRows).
+SideRows sideRows(const vg_graph& g, const vg_workspace& ws, uint32_t x, const Side& side, const uint16_t* v,
+                  const float* cost, float upper, bool lists, HubExit* exits) {
+    SideRows r{exits, 0, 0, {}};
     if (side.hub != kNone) {
         exits[0] = HubExit{side.hub, 0, 0};
-        return 1;
+        r.count = 1;
+        return r;
+    }
+    if (lists && g.hubExitLists != nullptr) {
+        uint32_t patches = 0;
+        forEachPatchOf(g, x, [&](uint32_t patch, uint32_t) {
+            if (patches < kMaxSidePatches) r.listStart[patches] = g.hubExitPatchBegin[patch];
+            ++patches;
+        });
+        r.listCount = patches <= kMaxSidePatches ? patches : 0;
     }
     const uint32_t begin = ws.hubSlotRecordBegin[side.first], end = ws.hubSlotRecordBegin[side.first + 1];
     const uint32_t slotBegin = g.first[side.first].slotBegin;
-    uint32_t n = 0;
     for (uint32_t c = begin; c < end; ++c) {
         const uint32_t k = ws.hubSlotOrder[c];
-        if (k != kNone && v[k] != kNoStep && !(cost[c - begin] > upper))
-            exits[n++] = HubExit{g.nodeHub[g.slots[slotBegin + k]], k, v[k]};
+        if (k == kNone) continue;  // the group's padding, after the candidates
+        const bool usable = v[k] != kNoStep && !(cost[c - begin] > upper);
+        if (usable || r.listCount > 0) exits[r.count++] = HubExit{g.nodeHub[g.slots[slotBegin + k]], k, usable ? v[k] : kNoStep};
     }
-    return n;
+    return r;
 }
 
 // Which first-layer nodes of an endpoint's patch a query reads. A node n of s's patch can
@@ -728,6 +807,8 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
     Side a, b;
     if (!sideOf(g, s, a) || !sideOf(g, t, b) || shareFirstPatch(g, a, b)) return false;
     const uint32_t lca = commonAncestor(g, a.tree, b.tree);
+    prefetchExitLists(g, ws, s, a, lca, 0);
+    prefetchExitLists(g, ws, t, b, lca, 0);
     const float scale = g.hubLabelScale;
     auto distanceOf = [&](uint16_t steps) { return steps == kNoStep ? __builtin_inff() : float(steps) * scale; };
 
@@ -743,6 +824,8 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
     uint16_t baseS = 0, baseT = 0;
     if (a.hub == kNone) innerSteps(g, ws, s, a, vS);
     if (b.hub == kNone) innerSteps(g, ws, t, b, vT);
+    prefetchExitLists(g, ws, s, a, lca, 1);
+    prefetchExitLists(g, ws, t, b, lca, 1);
     EndpointBounds boundsS, boundsT;
     endpointBounds(g, ws, s, a, vS, boundsS);
     endpointBounds(g, ws, t, b, vT, boundsT);
@@ -767,20 +850,23 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
     uint16_t* dS = ws.hubSteps;
     HubExit* exitsS = ws.hubExits;
     HubExit* exitsT = ws.hubExits + (slotsS > 0 ? slotsS : 1);
-    sourceColumnsOn(g, exitsS, sideExits(g, ws, a, vS, costS, upper, exitsS), blocks, blockCount, dS);
-    const uint32_t exitCountT = sideExits(g, ws, b, vT, costT, upper, exitsT);
+    // The exit lists are exact, not bounds: the full reads (the tests' reference) go without.
+    const SideRows rowsS = sideRows(g, ws, s, a, vS, costS, upper, prune, exitsS);
+    sourceColumnsOn(g, ws, rowsS, blocks, blockCount, dS);
+    const SideRows rowsT = sideRows(g, ws, t, b, vT, costT, upper, prune, exitsT);
     uint16_t* acc = ws.hubExitSteps;
-    targetColumnsOn(g, dS, exitsT, exitCountT, blocks, blockCount, acc);
+    targetColumnsOn(g, ws, dS, rowsT, blocks, blockCount, acc);
     float best = __builtin_inff();
     if (b.hub != kNone) {
-        best = distanceOf(exitCountT == 0 ? kNoStep : lanesMinimum(acc));
+        best = distanceOf(rowsT.count == 0 ? kNoStep : lanesMinimum(acc));
     } else {
         // s's distance to each first-layer node of t's patch that passed, then to t's patch nodes.
         const uint32_t first = b.first;
         const Patch& fp = g.first[first];
         uint16_t* w = ws.hubSlotSteps;
         for (uint32_t k = 0; k < fp.slotCount; ++k) w[k] = kNoStep;
-        for (uint32_t e = 0; e < exitCountT; ++e) w[exitsT[e].slot] = lanesMinimum(acc + uint64_t(e) * kHubBlock);
+        for (uint32_t e = 0; e < rowsT.count; ++e)
+            if (exitsT[e].steps != kNoStep) w[exitsT[e].slot] = lanesMinimum(acc + uint64_t(e) * kHubBlock);
         const uint32_t gen = beginQuery(ws);
         Frontier& F = ws.forward;
         Frontier& B = ws.backward;

@@ -135,11 +135,56 @@ bool facesValid(const vg_graph& g) {
 // and its subtree's hubs say; inner rows whose nodes are increasing node ids and whose
 // matrices are as large as their patches say. The query reads within these bounds whatever
 // the numbers are.
+// Exit lists (optional beside the labels, all three or none): per second-layer patch one
+// list per block of its first-layer patch's tree path, each an increasing run of indices
+// below the number of that patch's slots that are hubs. (The query also skips an entry
+// whose hub lies outside the block's rows, so no list can make it read past a matrix.)
+bool exitListsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
+    const bool any = g->hub_exit_patch_begin() || g->hub_exit_list_begin() || g->hub_exit_lists();
+    if (!any) return true;
+    if (!g->hub_exit_patch_begin() || !g->hub_exit_list_begin() || !g->hub_exit_lists()) return false;
+    const uint32_t* patchBegin = raw(g->hub_exit_patch_begin());
+    const uint32_t* listBegin = raw(g->hub_exit_list_begin());
+    const uint16_t* lists = raw(g->hub_exit_lists());
+    if (!aligned(patchBegin) || !aligned(listBegin) || !aligned(lists)) return false;
+    const uint64_t S2 = out.secondCount;
+    if (count(g->hub_exit_patch_begin()) != S2 + 1 || patchBegin[0] != 0) return false;
+    for (uint64_t q = 0; q < S2; ++q) {
+        const uint32_t p = out.second[q].parent;
+        if (p >= out.firstCount) return false;
+        uint64_t pathBlocks = 0;  // the blocks of p's tree path (a valid tree: the walk ends)
+        for (uint32_t t = out.hubFirstLeaf[p]; t != kNone; t = out.hubTree[t].parent)
+            pathBlocks += (uint64_t(out.hubTree[t].hubCount) + kHubBlock - 1) / kHubBlock;
+        if (patchBegin[q + 1] < patchBegin[q] || patchBegin[q + 1] - patchBegin[q] != pathBlocks) return false;
+    }
+    const uint64_t lists64 = count(g->hub_exit_lists());
+    if (count(g->hub_exit_list_begin()) != uint64_t(patchBegin[S2]) + 1 || listBegin[0] != 0 ||
+        listBegin[patchBegin[S2]] != lists64)
+        return false;
+    for (uint64_t q = 0; q < S2; ++q) {
+        const Patch& first = out.first[out.second[q].parent];
+        uint32_t exits = 0;
+        for (uint32_t k = 0; k < first.slotCount; ++k) exits += out.nodeHub[out.slots[first.slotBegin + k]] != kNone;
+        for (uint32_t i = patchBegin[q]; i < patchBegin[q + 1]; ++i) {
+            if (listBegin[i] > listBegin[i + 1] || listBegin[i + 1] > lists64) return false;
+            for (uint32_t e = listBegin[i]; e < listBegin[i + 1]; ++e)
+                if (lists[e] >= exits || (e > listBegin[i] && lists[e] <= lists[e - 1])) return false;
+        }
+    }
+    out.hubExitPatchBegin = patchBegin;
+    out.hubExitListBegin = listBegin;
+    out.hubExitLists = lists;
+    return true;
+}
+
 bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
     out.hubTreeCount = 0;
     out.hubCount = 0;
     out.hubMaxPath = 0;
     out.hubBlockBounds = nullptr;
+    out.hubExitPatchBegin = nullptr;
+    out.hubExitListBegin = nullptr;
+    out.hubExitLists = nullptr;
     const uint64_t T = count(g->hub_tree());
     const bool any = T != 0 || g->hub_first_leaf() || g->node_hub() || g->hub_column_begin() || g->hub_columns() ||
                      g->hub_inner_begin() || g->hub_inner_node() ||
@@ -227,7 +272,7 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
         }
         out.hubBlockBounds = bounds;
     }
-    return true;
+    return exitListsValid(g, out);
 }
 
 }  // namespace

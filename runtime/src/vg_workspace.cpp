@@ -125,6 +125,10 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.hubSlotOrder = L.take<uint32_t>(candidates);
     o.hubSlotRecords = L.take<float>(candidates * (3 + uint64_t(g.landmarkCount)));
     o.hubBlocks = L.take<vg::HubBlockRef>(pathBlocks);
+    o.hubBlocksAbove = L.take<uint32_t>(g.hubTreeCount);
+    // Two blocks' rows of one side: every exit once, or each of its patches' lists.
+    o.hubBlockRowsHalf = g.hubTreeCount ? uint64_t(vg::kMaxSidePatches) * (patchSlots + 1) : 0;
+    o.hubBlockRows = L.take<uint16_t>(2 * o.hubBlockRowsHalf);
     o.hubPatchReach = L.take<float>(g.hubTreeCount ? g.secondCount : 0);
     o.hubInnerRowOfSlot = L.take<uint32_t>(g.hubTreeCount ? secondNodeSlotEnd(g) : 0);
     o.graph = &g;
@@ -264,8 +268,11 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
     clearStamps(*ws);
     fillNodeRecords(*graph, ws->nodeRecords);
     fillHubBlockBegin(*graph, ws->hubBlockBegin);
-    for (uint32_t t = 0; t < graph->hubTreeCount; ++t)
+    for (uint32_t t = 0; t < graph->hubTreeCount; ++t) {
         ws->hubSubtreeEnd[t] = vg::hubSubtreeEnd(graph->hubTree, graph->hubTreeCount, graph->hubCount, t);
+        const uint32_t parent = graph->hubTree[t].parent;  // preorder: filled before t
+        ws->hubBlocksAbove[t] = parent == vg::kNone ? 0 : ws->hubBlocksAbove[parent] + ws->hubBlockBegin[parent + 1] - ws->hubBlockBegin[parent];
+    }
     if (graph->hubTreeCount) {
         fillHubSlotRecords(*graph, ws->nodeRecords, ws->hubSlotRecordBegin, ws->hubSlotOrder, ws->hubSlotRecords);
         fillHubPatchReach(*graph, ws->hubPatchReach);

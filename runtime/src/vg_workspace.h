@@ -59,6 +59,7 @@ inline void heapSiftDown(HeapEntry* heap, uint32_t size, uint32_t i, HeapEntry e
 struct HubBlockRef {
     uint64_t base;
     uint32_t lo, hi;
+    uint32_t pathIndex;  // the block's place on a tree path from the root (its exit lists' index)
     // The most a query's target side may add to the source's distance to one of the
     // block's hubs and still stay within the upper bound (+inf: read the block whatever it is).
     float targetRoom;
@@ -246,6 +247,9 @@ struct vg_workspace {
     float* hubSlotRecords;         // ... and their nodes' records by groups of kRecordLanes
                                    //     (slotRecordField; all three filled at init),
     vg::HubBlockRef* hubBlocks;    // ... and the blocks of the common tree path a query reads,
+    uint32_t* hubBlocksAbove;      // ... per tree node the blocks of its proper ancestors (filled at init),
+    uint16_t* hubBlockRows;        // ... a side's exits with rows in a block, two halves (this block's
+    uint64_t hubBlockRowsHalf;     //     and the next one's) of this many entries,
     float* hubPatchReach;          // ... per second-layer patch its longest node edge (filled at init)
     uint32_t* hubInnerRowOfSlot;   // ... per node slot of a second-layer patch its node's inner row in
                                    //     the patch's first-layer patch, kNone if none (filled at init)
@@ -257,6 +261,9 @@ namespace vg {
 // stored in groups of kRecordLanes candidates, field by field, so that the query bounds a
 // group at once.
 constexpr uint32_t kRecordLanes = 8;
+// A label query side reads the exit lists of at most this many second-layer patches (an
+// endpoint on more patches' borders reads every exit's rows instead).
+constexpr uint32_t kMaxSidePatches = 8;
 inline float& slotRecordField(float* records, uint64_t stride, uint64_t candidate, uint64_t field) {
     return records[(candidate / kRecordLanes) * kRecordLanes * stride + field * kRecordLanes + candidate % kRecordLanes];
 }

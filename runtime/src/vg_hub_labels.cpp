@@ -270,6 +270,7 @@ uint32_t blockRows(const vg_graph& g, const SideRows& side, const HubBlockRef& r
         for (uint32_t e = begin; e < end; ++e) out[n++] = uint16_t(e);
         return n;
     }
+    if (side.count == 0) return 0;  // (the branch-free loop reads side.exits[0])
     for (uint32_t i = 0; i < side.listCount; ++i) {
         const uint32_t list = side.listStart[i] + r.pathIndex;
         // Branch-free: whether the bounds kept an exit is a coin toss to the predictor.

@@ -1,7 +1,8 @@
 // Hub labels (bake --hub-labels, baker/hub_labels.h, runtime/src/vg_hub_labels.cpp): they
 // answer like the search on the same graph, symmetric, deterministic across thread
-// counts; reading only the labels the bounds keep gives the answers of reading all; and a
-// blob whose label tables do not add up is refused.
+// counts; reading only the labels the bounds keep, and only the exits the exit lists name
+// (baker/hub_exit_lists.h), gives the answers of reading all; and a blob whose label
+// tables or exit lists do not add up is refused.
 #include <catch2/catch.hpp>
 
 #include <algorithm>

@@ -84,6 +84,30 @@ size_t compareWithSearch(const std::vector<uint8_t>& blob, size_t pairs) {
     return answered;
 }
 
+// Two label reads (graph a with prune a, graph b with prune b: the same tables, read two
+// ways) of the same random pairs through one workspace: how many pairs the labels answer,
+// and on how many the two answers differ.
+struct Agreement {
+    size_t answered = 0, differ = 0;
+};
+Agreement compareReads(const vg_graph& a, bool pruneA, const vg_graph& b, bool pruneB, vg_workspace& ws,
+                       uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<uint32_t> pick(0, a.vertexCount - 1);
+    Agreement out;
+    for (int i = 0; i < 3000; ++i) {
+        const uint32_t s = pick(rng), t = pick(rng);
+        float first = 0, second = 0;
+        const bool labelledA = vg::hubDistance(a, ws, s, t, __builtin_inff(), &first, pruneA);
+        const bool labelledB = vg::hubDistance(b, ws, s, t, __builtin_inff(), &second, pruneB);
+        REQUIRE(labelledA == labelledB);
+        if (!labelledA) continue;
+        ++out.answered;
+        out.differ += first != second;
+    }
+    return out;
+}
+
 }  // namespace
 
 TEST_CASE("hub labels answer like the directed search on the same graph", "[hub]") {
@@ -106,22 +130,9 @@ TEST_CASE("hub labels: the pruned reads answer like reading every label", "[hub]
         REQUIRE(g.graph()->hubBlockBounds != nullptr);
         REQUIRE(g.graph()->hubExitLists != nullptr);  // the pruned reads take the exit lists too
         RuntimeWorkspace ws(g.graph());
-        const uint32_t V = vg_vertex_count(g.graph());
-        std::mt19937 rng(11);
-        std::uniform_int_distribution<uint32_t> pick(0, V - 1);
-        size_t answered = 0, differ = 0;
-        for (int i = 0; i < 3000; ++i) {
-            const uint32_t s = pick(rng), t = pick(rng);
-            float pruned = 0, full = 0;
-            const bool a = vg::hubDistance(*g.graph(), *ws.get(), s, t, __builtin_inff(), &pruned, true);
-            const bool b = vg::hubDistance(*g.graph(), *ws.get(), s, t, __builtin_inff(), &full, false);
-            REQUIRE(a == b);
-            if (!a) continue;
-            ++answered;
-            differ += pruned != full;
-        }
-        CHECK(answered > 1500);
-        CHECK(differ == 0);
+        const Agreement prunedAndFull = compareReads(*g.graph(), true, *g.graph(), false, *ws.get(), 11);
+        CHECK(prunedAndFull.answered > 1500);
+        CHECK(prunedAndFull.differ == 0);
     }
 }
 
@@ -167,22 +178,9 @@ TEST_CASE("hub labels: the exit lists name a few exits per block and answer as e
     CHECK(listed > 0);
     CHECK(double(listed) < 0.5 * double(covered));
 
-    const uint32_t V = vg_vertex_count(g.graph());
-    std::mt19937 rng(13);
-    std::uniform_int_distribution<uint32_t> pick(0, V - 1);
-    size_t answered = 0, differ = 0;
-    for (int i = 0; i < 3000; ++i) {
-        const uint32_t s = pick(rng), t = pick(rng);
-        float withLists = 0, without = 0;
-        const bool a = vg::hubDistance(graph, *ws.get(), s, t, __builtin_inff(), &withLists, true);
-        const bool b = vg::hubDistance(everyExit, *ws.get(), s, t, __builtin_inff(), &without, true);
-        REQUIRE(a == b);
-        if (!a) continue;
-        ++answered;
-        differ += withLists != without;
-    }
-    CHECK(answered > 1500);
-    CHECK(differ == 0);
+    const Agreement listsAndEveryExit = compareReads(graph, true, everyExit, true, *ws.get(), 13);
+    CHECK(listsAndEveryExit.answered > 1500);
+    CHECK(listsAndEveryExit.differ == 0);
 }
 
 TEST_CASE("hub labels: the exit lists are the same with and without AVX2 and as stored", "[hub]") {

@@ -136,6 +136,37 @@ TEST_CASE("hub labels: the pruned reads answer like reading every label", "[hub]
     }
 }
 
+TEST_CASE("hub labels: the meeting inside t's patch answers like the general meeting", "[hub]") {
+    // A target inside one second-layer patch (no node) meets s's distances from slot-local
+    // arrays and the patch's edge list; any other target through the search labels and the
+    // node edge lists. Both must give the same numbers, pruned and full, also on a graph
+    // whose pruning merged nodes away.
+    for (const double delta : {0.0, 0.002}) {
+        const std::vector<uint8_t> blob = delta == 0.0 ? labelledBlob() : bakeLabelled(false, 0, delta);
+        RuntimeGraph g = openOrFail(blob);
+        const vg_graph& graph = *g.graph();
+        RuntimeWorkspace ws(g.graph());
+        std::mt19937 rng(23);
+        std::uniform_int_distribution<uint32_t> pick(0, graph.vertexCount - 1);
+        size_t inside = 0, differ = 0;
+        for (int i = 0; i < 2000; ++i) {
+            const uint32_t s = pick(rng), t = pick(rng);
+            for (const bool prune : {true, false}) {
+                float local = 0, general = 0;
+                const bool a = vg::hubDistance(graph, *ws.get(), s, t, __builtin_inff(), &local, prune, false);
+                const bool b = vg::hubDistance(graph, *ws.get(), s, t, __builtin_inff(), &general, prune, true);
+                REQUIRE(a == b);
+                if (!a) continue;
+                // The query meets next to the larger vertex id (one order for both directions).
+                inside += prune && vg::vertexNode(graph, std::max(s, t)) == vg::kNone;
+                differ += local != general;
+            }
+        }
+        CHECK(inside > 1000);
+        CHECK(differ == 0);
+    }
+}
+
 TEST_CASE("hub labels: the exit lists name a few exits per block and answer as every exit does", "[hub]") {
     // Per second-layer patch and block, only the exits that are the best way from some node
     // of the patch to some hub of the block (baker/hub_exit_lists.h). Reading those alone

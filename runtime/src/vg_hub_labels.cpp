@@ -756,6 +756,55 @@ uint16_t hubToHub(const vg_graph& g, const vg_workspace& ws, uint32_t a, uint32_
     return best;
 }
 
+// The meeting next to a target inside one second-layer patch (no node): s's distance to each
+// node of the patch (through the first-layer nodes of t's patch that passed, w) met with
+// t's row entry to it, then the unfolded crossings of the patch's node edges. The same
+// numbers, in the same order, as the general meeting in hubDistance, but from slot-local
+// arrays and the patch's own edge list (with its lengths), instead of the search labels
+// and node edge lists, which are scattered reads all over the graph.
+float meetInPatch(const vg_graph& g, vg_workspace& ws, uint32_t t, uint32_t first, const uint16_t* w, bool prune,
+                  float reach) {
+    const float inf = __builtin_inff();
+    const uint32_t patch = g.vertexPatch[t], slotT = g.vertexSlot[t];
+    const Patch& p = g.second[patch];
+    const uint32_t K = g.first[first].slotCount;
+    const uint32_t* slots = g.slots + p.slotBegin;
+    float* fromS = ws.slotLabel;            // per node slot: s's distance (+inf: not met)
+    float* toT = ws.patchNodeDistance;      // ... and t's (+inf: not met)
+    float best = inf;
+    for (uint32_t j = 0; j < p.nodeCount; ++j) {
+        fromS[j] = inf;
+        toT[j] = inf;
+        const uint32_t r = ws.hubInnerRowOfSlot[p.slotBegin + j];
+        if (r == kNone || !nodeActive(g, slots[j])) continue;
+        const uint32_t q = quantum(g.secondDistances, entryIndex(p, slotT, j));
+        if (q == kNoPathQuantum) continue;
+        toT[j] = float(q) * p.scale;
+        const uint16_t steps = meetStepsOn(g, w, innerRowData(g, first, r), K);
+        fromS[j] = steps == kNoStep ? inf : float(steps) * g.hubLabelScale;
+        const float via = fromS[j] + toT[j];
+        if (via < best) best = via;
+    }
+    const float margin = prune ? kCrossingMargin : inf;
+    const float near = prune ? best * kCrossingMargin + reach : inf;
+    const uint32_t end = patchEdgesEnd(g, patch);
+    for (uint32_t e = p.edgeBegin; e < end; ++e) {
+        const PatchEdge& edge = g.secondEdges[e];
+        const uint32_t jv = edge.from, jx = edge.to;
+        const float fv = fromS[jv], bv = toT[jv];
+        if (!(fv + bv <= near) || toT[jx] == inf) continue;
+        const uint32_t v = slots[jv], x = slots[jx];
+        const float fx = fromS[jx], bx = toT[jx];
+        if (x < v && fx + bx <= near) continue;  // x's own turn unfolds it
+        const float nodePath = fv + bv < fx + bx ? fv + bv : fx + bx;
+        if (nodePath - reach > best * margin) continue;
+        const float l = edge.length;
+        const float d = v < x ? crossing(fv, fx, bv, bx, l) : crossing(fx, fv, bx, bv, l);
+        if (d < best) best = d;
+    }
+    return best;
+}
+
 }  // namespace
 
 float hubEndpointLandmarks(const vg_graph& g, vg_workspace& ws, uint32_t x, float* out) {
@@ -798,7 +847,7 @@ uint32_t innerRow(const vg_graph& g, uint32_t first, uint32_t node) {
 }
 
 bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance, float* out,
-                 bool prune) {
+                 bool prune, bool generalMeeting) {
     if (g.hubTreeCount == 0 || s == t || g.vertexPatch[s] == kNone || g.vertexPatch[t] == kNone) return false;
     if (t < s) {  // one order for both directions: d(s, t) and d(t, s) are the same number
         const uint32_t x = s;
@@ -868,6 +917,11 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
         for (uint32_t k = 0; k < fp.slotCount; ++k) w[k] = kNoStep;
         for (uint32_t e = 0; e < rowsT.count; ++e)
             if (exitsT[e].steps != kNoStep) w[exitsT[e].slot] = lanesMinimum(acc + uint64_t(e) * kHubBlock);
+        if (b.node == kNone && !generalMeeting) {  // t inside one second-layer patch: the common case
+            const float d = meetInPatch(g, ws, t, first, w, prune, reach);
+            *out = d <= maxDistance ? d : __builtin_inff();
+            return true;
+        }
         const uint32_t gen = beginQuery(ws);
         Frontier& F = ws.forward;
         Frontier& B = ws.backward;

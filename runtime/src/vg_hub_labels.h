@@ -16,8 +16,11 @@ namespace vg {
 // *out untouched, when the blob has no labels or s and t share a first-layer patch (a
 // shortest path may stay inside it, which only the search sees). `prune` false reads
 // every label of both patches (the reference the tests compare the pruned reads with).
+// `generalMeeting` meets next to t through the search labels and node edge lists even
+// where t lies inside one second-layer patch, which otherwise takes slot-local arrays and
+// the patch's edge list (the same numbers; the tests compare the two).
 bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance, float* out,
-                 bool prune = true);
+                 bool prune = true, bool generalMeeting = false);
 
 // Vertex x's landmark distances as a label query takes them (through its first-layer
 // patch's nodes, +inf for a landmark inside that patch; from its row nodes when x is a hub

@@ -756,6 +756,21 @@ uint16_t hubToHub(const vg_graph& g, const vg_workspace& ws, uint32_t a, uint32_
     return best;
 }
 
+// The unfolded crossing of node edge (v, x) next to t, both ends met (f: from s, b: to t),
+// taken into best, unless x's own turn unfolds it (xTurns: every met node gets one) or it
+// cannot win: a crossing undercuts the better of its two node paths by less than `reach`
+// (kUpperSlack's comment). The edge's length is asked for only past those tests.
+template <class Length>
+inline float unfoldNodeEdge(uint32_t v, float fv, float bv, uint32_t x, float fx, float bx, bool xTurns, float near,
+                            float reach, float margin, float best, Length&& length) {
+    if (xTurns && x < v && fx + bx <= near) return best;  // x's own turn unfolds it
+    const float nodePath = fv + bv < fx + bx ? fv + bv : fx + bx;
+    if (nodePath - reach > best * margin) return best;
+    const float l = length();
+    const float d = v < x ? crossing(fv, fx, bv, bx, l) : crossing(fx, fv, bx, bv, l);
+    return d < best ? d : best;
+}
+
 // The meeting next to a target inside one second-layer patch (no node): s's distance to each
 // node of the patch (through the first-layer nodes of t's patch that passed, w) met with
 // t's row entry to it, then the unfolded crossings of the patch's node edges. The same
@@ -793,14 +808,8 @@ float meetInPatch(const vg_graph& g, vg_workspace& ws, uint32_t t, uint32_t firs
         const uint32_t jv = edge.from, jx = edge.to;
         const float fv = fromS[jv], bv = toT[jv];
         if (!(fv + bv <= near) || toT[jx] == inf) continue;
-        const uint32_t v = slots[jv], x = slots[jx];
-        const float fx = fromS[jx], bx = toT[jx];
-        if (x < v && fx + bx <= near) continue;  // x's own turn unfolds it
-        const float nodePath = fv + bv < fx + bx ? fv + bv : fx + bx;
-        if (nodePath - reach > best * margin) continue;
-        const float l = edge.length;
-        const float d = v < x ? crossing(fv, fx, bv, bx, l) : crossing(fx, fv, bx, bv, l);
-        if (d < best) best = d;
+        best = unfoldNodeEdge(slots[jv], fv, bv, slots[jx], fromS[jx], toT[jx], true, near, reach, margin, best,
+                              [&] { return edge.length; });
     }
     return best;
 }
@@ -959,13 +968,8 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
             for (uint32_t e = g.nodeEdgeBegin[v]; e < g.nodeEdgeBegin[v + 1]; ++e) {
                 const uint32_t x = g.nodeEdge[e];
                 if (!B.labelled(x)) continue;
-                const float fx = F.label[x].dist, bx = B.label[x].dist;
-                if (everyMet && x < v && fx + bx <= near) continue;  // x's own turn unfolds it
-                const float nodePath = fv + bv < fx + bx ? fv + bv : fx + bx;
-                if (nodePath - reach > best * margin) continue;
-                const float l = euclidean(g, g.nodeVertex[v], g.nodeVertex[x]);
-                const float d = v < x ? crossing(fv, fx, bv, bx, l) : crossing(fx, fv, bx, bv, l);
-                if (d < best) best = d;
+                best = unfoldNodeEdge(v, fv, bv, x, F.label[x].dist, B.label[x].dist, everyMet, near, reach, margin,
+                                      best, [&] { return euclidean(g, g.nodeVertex[v], g.nodeVertex[x]); });
             }
         }
     }

@@ -467,7 +467,7 @@ void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children,
 }  // namespace
 
 HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProgress& progress,
-                           const HubPlanCheck& checkPlan) {
+                           const HubPlanCheck& checkPlan, bool wholeOverlay) {
     const auto start = std::chrono::steady_clock::now();
     HubLabels out;
     View v;
@@ -573,8 +573,10 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
         patchScale[p] = double(r.scale());
     });
 
-    // Labels: one overlay Dijkstra per hub x, stopped once every hub whose label holds x
-    // (the hubs of x's subtree) is settled.
+    // Labels: one overlay Dijkstra per hub x over the first-layer patches of its tree
+    // node's subtree (hub_labels.h: why no path outside is needed), stopped once every hub
+    // whose label holds x (the hubs of the subtree) is settled. A subtree is a range of
+    // tree nodes, so a patch is inside when its leaf is in that range.
     std::vector<double> labelValue(out.columnBegin[T], kInf);
     PerThread<Dijkstra> scratch;
     parallelFor(H, [&](size_t x) {
@@ -599,6 +601,7 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
                 const fb::Membership* ms = v.g->node_first()->Get(m);
                 const uint32_t p = ms->patch();
                 if (p == from) continue;
+                if (!wholeOverlay && (out.firstLeaf[p] < t || out.firstLeaf[p] >= subtreeEnd[t])) continue;
                 const fb::PatchRecord& r = v.first(p);
                 const uint32_t S = r.slot_count();
                 const uint16_t* row = quanta.data() + quantaBegin[p] + uint64_t(ms->slot()) * S;

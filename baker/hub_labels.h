@@ -10,7 +10,11 @@
 //   * label of hub b: its overlay distance to every hub on the tree path from the root to
 //     b's own tree node (a tree node's hubs in a chain along its separator, in blocks of
 //     16, each block stored as one matrix over the hubs of the node's subtree, so that
-//     neighbouring hubs' entries lie together);
+//     neighbouring hubs' entries lie together). The entry for hub h of tree node t is
+//     the distance over the patches of t's subtree only: a path that leaves the subtree
+//     crosses a hub of a tree node above t, which every query reading h reads as well. So
+//     the highest hub of a shortest path still gets its exact distances from both ends,
+//     and each label run searches a subtree instead of the whole overlay;
 //   * inner rows of first-layer patch P: the distance inside P (over its second-layer node
 //     graph) from each of P's second-layer nodes to each of P's first-layer nodes.
 //
@@ -83,8 +87,9 @@ struct HubLabelSizes {
 using HubPlanCheck = std::function<void(const HubLabelSizes&)>;
 
 // Builds the labels of `flatbuffer` (a verified Graph buffer, distances not coded).
-// Deterministic for any number of threads.
+// Deterministic for any number of threads. `wholeOverlay` (for the tests) runs each label
+// over the whole overlay instead of its hub's subtree: the same answers, slower.
 HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProgress& progress = HubProgress(),
-                           const HubPlanCheck& checkPlan = HubPlanCheck());
+                           const HubPlanCheck& checkPlan = HubPlanCheck(), bool wholeOverlay = false);
 
 }  // namespace vorogeo

@@ -219,6 +219,88 @@ TEST_CASE("hub labels: the exit lists are the same with and without AVX2 and as 
     CHECK(std::vector<uint16_t>(g->hub_exit_lists()->begin(), g->hub_exit_lists()->end()) == labels.exitLists);
 }
 
+namespace {
+
+// A label entry as a distance: hub `row` (of tree node x's subtree) to hub h of x.
+double labelEntry(const HubLabels& l, uint32_t x, uint32_t hubEnd, uint32_t row, uint32_t h) {
+    const uint32_t local = h - l.tree[x].hubBegin, subtree = hubEnd - l.tree[x].hubBegin;
+    const uint16_t steps = l.columns[l.columnBegin[x] + uint64_t(local / kHubBlock) * kHubBlock * subtree +
+                                     uint64_t(row - l.tree[x].hubBegin) * kHubBlock + local % kHubBlock];
+    return steps == kHubUnreachable ? HUGE_VAL : double(steps) * l.labelScale;
+}
+
+// Per tree node the end of its subtree's hubs (tree nodes in preorder).
+std::vector<uint32_t> subtreeHubEnds(const HubLabels& l) {
+    const uint32_t T = uint32_t(l.tree.size());
+    std::vector<uint32_t> end(T);
+    for (uint32_t t = 0; t < T; ++t) end[t] = t + 1;
+    for (uint32_t t = T; t-- > 1;) end[l.tree[t].parent] = std::max(end[l.tree[t].parent], end[t]);
+    std::vector<uint32_t> hubEnd(T);
+    for (uint32_t t = 0; t < T; ++t) hubEnd[t] = end[t] < T ? l.tree[end[t]].hubBegin : l.hubCount;
+    return hubEnd;
+}
+
+// The labels' distance between hubs a and b: the best sum over the hubs of every tree node
+// from their tree nodes' common ancestor up to the root (as the runtime's hubToHub).
+double twoHop(const HubLabels& l, const std::vector<uint32_t>& hubEnd, const std::vector<uint32_t>& hubTree,
+              uint32_t a, uint32_t b) {
+    std::vector<bool> aboveA(l.tree.size(), false);
+    for (uint32_t x = hubTree[a]; x != UINT32_MAX; x = l.tree[x].parent) aboveA[x] = true;
+    uint32_t x = hubTree[b];
+    while (!aboveA[x]) x = l.tree[x].parent;
+    double best = HUGE_VAL;
+    for (; x != UINT32_MAX; x = l.tree[x].parent)
+        for (uint32_t h = l.tree[x].hubBegin; h < l.tree[x].hubBegin + l.tree[x].hubCount; ++h)
+            best = std::min(best, labelEntry(l, x, hubEnd[x], a, h) + labelEntry(l, x, hubEnd[x], b, h));
+    return best;
+}
+
+}  // namespace
+
+TEST_CASE("hub labels: runs inside each subtree give the whole overlay's hub-to-hub distances", "[hub]") {
+    // Each label run searches only its hub's subtree (hub_labels.h): its entries may be
+    // longer than the whole overlay's, but the best sum over the common tree path, which is
+    // all a query takes, is the same distance up to the rounding of two label steps.
+    const std::vector<uint8_t>& blob = labelledBlob();  // uncompressed: the flatbuffer follows the header
+    const std::vector<uint8_t> flatbuffer(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end());
+    const HubLabels subtree = computeHubLabels(flatbuffer);
+    const HubLabels whole = computeHubLabels(flatbuffer, HubProgress(), HubPlanCheck(), true);
+    REQUIRE(subtree.tree.size() > 3);
+    REQUIRE(subtree.columnBegin == whole.columnBegin);  // the same tree, hubs and layout
+    REQUIRE(subtree.nodeHub == whole.nodeHub);
+    const std::vector<uint32_t> hubEnd = subtreeHubEnds(subtree);
+    std::vector<uint32_t> hubTree(subtree.hubCount);
+    for (uint32_t x = 0; x < subtree.tree.size(); ++x)
+        for (uint32_t h = subtree.tree[x].hubBegin; h < subtree.tree[x].hubBegin + subtree.tree[x].hubCount; ++h)
+            hubTree[h] = x;
+    const double rounding = subtree.labelScale + whole.labelScale;
+
+    // Entry by entry: never shorter (a subtree has no shortcut), some of them longer.
+    size_t shorter = 0, longer = 0;
+    for (uint32_t x = 0; x < subtree.tree.size(); ++x)
+        for (uint32_t row = subtree.tree[x].hubBegin; row < hubEnd[x]; ++row)
+            for (uint32_t h = subtree.tree[x].hubBegin; h < subtree.tree[x].hubBegin + subtree.tree[x].hubCount; ++h) {
+                const double inside = labelEntry(subtree, x, hubEnd[x], row, h);
+                const double anywhere = labelEntry(whole, x, hubEnd[x], row, h);
+                shorter += inside < anywhere - rounding;
+                longer += inside > anywhere + rounding;
+            }
+    CHECK(shorter == 0);
+    CHECK(longer > 0);
+
+    // Hub to hub through the labels: the same distances.
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<uint32_t> pick(0, subtree.hubCount - 1);
+    size_t differ = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const uint32_t a = pick(rng), b = pick(rng);
+        const double inside = twoHop(subtree, hubEnd, hubTree, a, b), anywhere = twoHop(whole, hubEnd, hubTree, a, b);
+        REQUIRE(std::isfinite(anywhere));
+        differ += !(std::fabs(inside - anywhere) <= rounding * 1.001);
+    }
+    CHECK(differ == 0);
+}
+
 TEST_CASE("hub labels: an endpoint's landmark distances through its patch's first-layer nodes", "[hub]") {
     // A label query takes an endpoint's landmark distances from its inner distances to its
     // first-layer patch's nodes and their landmark distances: the searches' values (from the

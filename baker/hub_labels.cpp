@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "hub_exit_lists.h"
+#include "hub_label_runs.h"
 #include "parallel.h"
 #include "vorogeo_distance_coding.h"
 #include "vorogeo_generated.h"
@@ -464,10 +465,48 @@ void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children,
     }
 }
 
+// The overlay for the block runs: the unpacked matrices, and the nodes of first-layer
+// slots renumbered in slot order (overlayOf: graph node -> overlay node, kNo if none) with
+// their memberships in the graph's order.
+void buildLabelOverlay(const View& v, const std::vector<uint64_t>& quantaBegin, const std::vector<uint16_t>& quanta,
+                       const std::vector<double>& patchScale, const std::vector<uint32_t>& slotNode,
+                       const std::vector<uint32_t>& firstLeaf, LabelOverlay& o, std::vector<uint32_t>& overlayOf) {
+    o.noPath = kNoPath;
+    o.quantaBegin = quantaBegin;
+    o.quanta = quanta;
+    o.scale = patchScale;
+    o.patchLeaf = firstLeaf;
+    o.slotBegin.assign(size_t(v.firstCount) + 1, 0);
+    for (uint32_t p = 0; p < v.firstCount; ++p) o.slotBegin[p + 1] = o.slotBegin[p] + v.first(p).slot_count();
+    o.slotNode.assign(o.slotBegin.back(), kNo);
+    std::vector<uint32_t> nodeOf;  // overlay node -> graph node
+    for (uint32_t p = 0; p < v.firstCount; ++p) {
+        const uint32_t begin = v.first(p).slot_begin();
+        for (uint32_t j = 0; j < v.first(p).slot_count(); ++j) {
+            const uint32_t n = slotNode[begin + j];
+            if (overlayOf[n] == kNo) {
+                overlayOf[n] = uint32_t(nodeOf.size());
+                nodeOf.push_back(n);
+            }
+            o.slotNode[o.slotBegin[p] + j] = overlayOf[n];
+        }
+    }
+    const auto* firstBegin = v.g->node_first_begin();
+    o.memberBegin.assign(nodeOf.size() + 1, 0);
+    o.members.clear();
+    for (size_t k = 0; k < nodeOf.size(); ++k) {
+        for (uint32_t m = firstBegin->Get(nodeOf[k]); m < firstBegin->Get(nodeOf[k] + 1); ++m) {
+            const fb::Membership* ms = v.g->node_first()->Get(m);
+            o.members.push_back({ms->patch(), ms->slot()});
+        }
+        o.memberBegin[k + 1] = uint32_t(o.members.size());
+    }
+}
+
 }  // namespace
 
 HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProgress& progress,
-                           const HubPlanCheck& checkPlan, bool wholeOverlay) {
+                           const HubPlanCheck& checkPlan, HubLabelRuns runs) {
     const auto start = std::chrono::steady_clock::now();
     HubLabels out;
     View v;
@@ -534,9 +573,9 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
     std::mutex progressMutex;
     const size_t jobs = size_t(v.firstCount) + H;
     const size_t step = std::max<size_t>(1, jobs / 100);
-    auto tick = [&] {
-        const size_t n = ++done;
-        if (progress && (n % step == 0 || n == jobs)) {
+    auto tick = [&](size_t count) {
+        const size_t n = done += count;
+        if (progress && (n / step != (n - count) / step || n == jobs)) {
             std::lock_guard<std::mutex> lock(progressMutex);
             progress(double(n) / double(jobs));
         }
@@ -554,7 +593,7 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
     }
     parallelFor(v.firstCount, [&](size_t f) {
         innerRows(v, uint32_t(f), children[f], innerNodes[f], innerValues[f]);
-        tick();
+        tick(1);
     });
 
     // The overlay graph once: every first-layer matrix unpacked (quanta, kNoPath kept), its
@@ -573,48 +612,72 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
         patchScale[p] = double(r.scale());
     });
 
-    // Labels: one overlay Dijkstra per hub x over the first-layer patches of its tree
-    // node's subtree (hub_labels.h: why no path outside is needed), stopped once every hub
-    // whose label holds x (the hubs of the subtree) is settled. A subtree is a range of
-    // tree nodes, so a patch is inside when its leaf is in that range.
+    // Labels over the first-layer patches of each tree node's subtree (hub_labels.h: why no
+    // path outside is needed; a subtree is a range of tree nodes, so a patch is inside when
+    // its leaf is in that range): a block of hubs per search (hub_label_runs.h).
     std::vector<double> labelValue(out.columnBegin[T], kInf);
-    PerThread<Dijkstra> scratch;
-    parallelFor(H, [&](size_t x) {
-        Dijkstra& dj = scratch.local();
-        const uint32_t t = hubTree[x];
-        const uint32_t targetsBegin = out.tree[t].hubBegin, targetsEnd = hubEnd(t);
-        // x's column: lane x % 16 of its block's matrix, one row per hub of the subtree.
-        const uint32_t local = uint32_t(x) - targetsBegin;
-        const uint64_t column = out.columnBegin[t] + uint64_t(local / kHubBlock) * kHubBlock * (targetsEnd - targetsBegin) +
-                                local % kHubBlock;
-        uint32_t remaining = targetsEnd - targetsBegin;
-        dj.begin(v.nodes);
-        dj.offer(hubNode[x], 0.0, kNo);
-        for (uint32_t u = dj.next(); u != kNo; u = dj.next()) {
-            const uint32_t hu = out.nodeHub[u];
-            if (hu != kNo && hu >= targetsBegin && hu < targetsEnd && --remaining == 0) break;
-            // Not the row of the patch u was reached through: its matrix holds shortest paths
-            // inside the patch already (as the runtime's search skips it).
-            const double du = dj.dist[u];
-            const uint32_t from = dj.via[u];
-            for (uint32_t m = firstBegin->Get(u); m < firstBegin->Get(u + 1); ++m) {
-                const fb::Membership* ms = v.g->node_first()->Get(m);
-                const uint32_t p = ms->patch();
-                if (p == from) continue;
-                if (!wholeOverlay && (out.firstLeaf[p] < t || out.firstLeaf[p] >= subtreeEnd[t])) continue;
-                const fb::PatchRecord& r = v.first(p);
-                const uint32_t S = r.slot_count();
-                const uint16_t* row = quanta.data() + quantaBegin[p] + uint64_t(ms->slot()) * S;
-                const uint32_t* to = slotNode.data() + r.slot_begin();
-                const double scale = patchScale[p];
-                for (uint32_t j = 0; j < S; ++j)
-                    if (row[j] != kNoPath) dj.offer(to[j], du + double(row[j]) * scale, p);
+    if (runs == HubLabelRuns::blocks) {
+        LabelOverlay overlay;
+        std::vector<uint32_t> overlayOf(v.nodes, kNo);
+        buildLabelOverlay(v, quantaBegin, quanta, patchScale, slotNode, out.firstLeaf, overlay, overlayOf);
+        std::vector<std::pair<uint32_t, uint32_t>> blocks;  // (tree node, block)
+        for (uint32_t t = 0; t < T; ++t)
+            for (uint32_t b = 0; b * kHubBlock < out.tree[t].hubCount; ++b) blocks.push_back({t, b});
+        PerThread<BlockRuns> blockScratch;
+        parallelFor(blocks.size(), [&](size_t k) {
+            BlockRuns& runs = blockScratch.local();
+            const uint32_t t = blocks[k].first, first = out.tree[t].hubBegin + blocks[k].second * kHubBlock;
+            const uint32_t count = std::min(kHubBlock, out.tree[t].hubBegin + out.tree[t].hubCount - first);
+            uint32_t sources[kHubBlock];
+            for (uint32_t i = 0; i < count; ++i) sources[i] = overlayOf[hubNode[first + i]];
+            runs.run(overlay, sources, count, t, subtreeEnd[t]);
+            // The block's matrix: a row of kHubBlock lanes per hub of the subtree.
+            const uint32_t targetsBegin = out.tree[t].hubBegin, targetsEnd = hubEnd(t);
+            double* matrix = labelValue.data() + out.columnBegin[t] +
+                             uint64_t(blocks[k].second) * kHubBlock * (targetsEnd - targetsBegin);
+            for (uint32_t r = targetsBegin; r < targetsEnd; ++r) {
+                const double* d = runs.distances(overlayOf[hubNode[r]]);
+                for (uint32_t i = 0; i < count; ++i) matrix[uint64_t(r - targetsBegin) * kHubBlock + i] = d[i];
             }
-        }
-        for (uint32_t b = targetsBegin; b < targetsEnd; ++b)
-            labelValue[column + uint64_t(b - targetsBegin) * kHubBlock] = dj.dist[hubNode[b]];
-        tick();
-    });
+            tick(count);
+        });
+    } else {
+        // The references: one Dijkstra per hub x, over its subtree or the whole overlay,
+        // stopped once every hub whose label holds x (the hubs of x's subtree) is settled.
+        const bool wholeOverlay = runs == HubLabelRuns::perHubWholeOverlay;
+        PerThread<Dijkstra> scratch;
+        parallelFor(H, [&](size_t x) {
+            Dijkstra& dj = scratch.local();
+            const uint32_t t = hubTree[x];
+            const uint32_t targetsBegin = out.tree[t].hubBegin, targetsEnd = hubEnd(t);
+            // x's column: lane x % 16 of its block's matrix, one row per hub of the subtree.
+            const uint32_t local = uint32_t(x) - targetsBegin;
+            const uint64_t column = out.columnBegin[t] +
+                                    uint64_t(local / kHubBlock) * kHubBlock * (targetsEnd - targetsBegin) +
+                                    local % kHubBlock;
+            uint32_t remaining = targetsEnd - targetsBegin;
+            dj.begin(v.nodes);
+            dj.offer(hubNode[x], 0.0, kNo);
+            for (uint32_t u = dj.next(); u != kNo; u = dj.next()) {
+                const uint32_t hu = out.nodeHub[u];
+                if (hu != kNo && hu >= targetsBegin && hu < targetsEnd && --remaining == 0) break;
+                for (uint32_t m = firstBegin->Get(u); m < firstBegin->Get(u + 1); ++m) {
+                    const fb::Membership* ms = v.g->node_first()->Get(m);
+                    const uint32_t p = ms->patch();
+                    if (!wholeOverlay && (out.firstLeaf[p] < t || out.firstLeaf[p] >= subtreeEnd[t])) continue;
+                    const fb::PatchRecord& r = v.first(p);
+                    const uint32_t S = r.slot_count();
+                    const uint16_t* row = quanta.data() + quantaBegin[p] + uint64_t(ms->slot()) * S;
+                    const uint32_t* to = slotNode.data() + r.slot_begin();
+                    for (uint32_t j = 0; j < S; ++j)
+                        if (row[j] != kNoPath) dj.offer(to[j], dj.dist[u] + double(row[j]) * patchScale[p], p);
+                }
+            }
+            for (uint32_t b = targetsBegin; b < targetsEnd; ++b)
+                labelValue[column + uint64_t(b - targetsBegin) * kHubBlock] = dj.dist[hubNode[b]];
+            tick(1);
+        });
+    }
 
     // 16-bit steps of one scale for labels and inner rows, so that the runtime adds them
     // as they are; the largest value takes kLargestLabelStep steps.

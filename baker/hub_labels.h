@@ -86,10 +86,14 @@ struct HubLabelSizes {
 // Called once with the planned sizes; it may throw to refuse them (bake_limits.h).
 using HubPlanCheck = std::function<void(const HubLabelSizes&)>;
 
+// How the labels are computed: a search per block of hubs over each subtree (the bake's),
+// or, as references for the tests, a Dijkstra per hub over its subtree or over the whole
+// overlay (the same answers, slower).
+enum class HubLabelRuns { blocks, perHub, perHubWholeOverlay };
+
 // Builds the labels of `flatbuffer` (a verified Graph buffer, distances not coded).
-// Deterministic for any number of threads. `wholeOverlay` (for the tests) runs each label
-// over the whole overlay instead of its hub's subtree: the same answers, slower.
+// Deterministic for any number of threads.
 HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProgress& progress = HubProgress(),
-                           const HubPlanCheck& checkPlan = HubPlanCheck(), bool wholeOverlay = false);
+                           const HubPlanCheck& checkPlan = HubPlanCheck(), HubLabelRuns runs = HubLabelRuns::blocks);
 
 }  // namespace vorogeo

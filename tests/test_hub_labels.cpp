@@ -257,6 +257,26 @@ double twoHop(const HubLabels& l, const std::vector<uint32_t>& hubEnd, const std
 
 }  // namespace
 
+TEST_CASE("hub labels: a search per block of hubs gives the Dijkstra per hub's labels", "[hub]") {
+    // The bake's label-correcting search over vectors of 16 lanes (hub_label_runs.h) ends at
+    // the distances of separate Dijkstra runs over the same subtree, so at the same steps.
+    const std::vector<uint8_t>& blob = labelledBlob();  // uncompressed: the flatbuffer follows the header
+    const std::vector<uint8_t> flatbuffer(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end());
+    const HubLabels blocks = computeHubLabels(flatbuffer);
+    const HubLabels perHub = computeHubLabels(flatbuffer, HubProgress(), HubPlanCheck(), HubLabelRuns::perHub);
+    REQUIRE(blocks.columns.size() == perHub.columns.size());
+    CHECK(blocks.labelScale == perHub.labelScale);
+    size_t differ = 0, unreachable = 0;
+    for (size_t k = 0; k < blocks.columns.size(); ++k) {
+        differ += blocks.columns[k] != perHub.columns[k];
+        unreachable += perHub.columns[k] == kHubUnreachable;
+    }
+    CHECK(differ == 0);
+    CHECK(unreachable < blocks.columns.size() / 2);
+    CHECK(blocks.inner == perHub.inner);
+    CHECK(blocks.exitLists == perHub.exitLists);
+}
+
 TEST_CASE("hub labels: runs inside each subtree give the whole overlay's hub-to-hub distances", "[hub]") {
     // Each label run searches only its hub's subtree (hub_labels.h): its entries may be
     // longer than the whole overlay's, but the best sum over the common tree path, which is
@@ -264,7 +284,7 @@ TEST_CASE("hub labels: runs inside each subtree give the whole overlay's hub-to-
     const std::vector<uint8_t>& blob = labelledBlob();  // uncompressed: the flatbuffer follows the header
     const std::vector<uint8_t> flatbuffer(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end());
     const HubLabels subtree = computeHubLabels(flatbuffer);
-    const HubLabels whole = computeHubLabels(flatbuffer, HubProgress(), HubPlanCheck(), true);
+    const HubLabels whole = computeHubLabels(flatbuffer, HubProgress(), HubPlanCheck(), HubLabelRuns::perHubWholeOverlay);
     REQUIRE(subtree.tree.size() > 3);
     REQUIRE(subtree.columnBegin == whole.columnBegin);  // the same tree, hubs and layout
     REQUIRE(subtree.nodeHub == whole.nodeHub);

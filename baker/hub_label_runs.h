@@ -1,0 +1,60 @@
+// The label runs of the hub-label stage (hub_labels.h): distances from the hubs of one
+// label block (up to kHubBlock consecutive hubs of a tree node) over the first-layer
+// patches of the node's subtree, all of the block's hubs in one search.
+//
+// A label run per hub reads, for every node it settles, that node's rows of its patches'
+// matrices; the runs of a block's hubs (neighbours along one separator) settle nearly the
+// same nodes in nearly the same order, so each row came from memory once per hub. Here a
+// node holds a vector of kHubBlock distances (lane i: from the block's hub i), and a row
+// read once lowers all lanes. The search is label-correcting: a node is taken from the
+// queue by the smallest of its lanes lowered since it last relaxed, and relaxes those
+// lanes (a lane may be lowered again after it relaxed, and then relaxes again). It ends
+// at the shortest distances over the subtree's patches, as separate Dijkstra runs do.
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace vorogeo {
+
+// The first-layer overlay as the label runs read it: every first-layer matrix unpacked,
+// nodes renumbered to the overlay's own (the nodes of first-layer slots).
+struct LabelOverlay {
+    uint32_t noPath = 0;                  // the quantum that means "no path"
+    std::vector<uint64_t> quantaBegin;    // first-layer patches + 1 offsets into quanta
+    std::vector<uint16_t> quanta;         // per patch its slot x slot matrix
+    std::vector<double> scale;            // per patch: distance per quantum
+    std::vector<uint32_t> slotBegin;      // first-layer patches + 1 offsets into slotNode
+    std::vector<uint32_t> slotNode;       // per first-layer slot: its overlay node
+    std::vector<uint32_t> memberBegin;    // overlay nodes + 1 offsets into members
+    std::vector<std::pair<uint32_t, uint32_t>> members;  // per overlay node: (patch, slot)
+    std::vector<uint32_t> patchLeaf;      // per patch: its leaf tree node (tree in preorder)
+};
+
+// Scratch of one thread's block runs.
+class BlockRuns {
+public:
+    static constexpr uint32_t kLanes = 16;  // = kHubBlock
+
+    // Distances from sources[0, count) (overlay nodes, count <= kLanes; lane i from
+    // sources[i]) to every overlay node over the patches whose leaf lies in [leafBegin,
+    // leafEnd) (a subtree: a range of tree nodes in preorder). avx2: use AVX2 where the
+    // processor has it (the same numbers either way).
+    void run(const LabelOverlay& o, const uint32_t* sources, uint32_t count, uint32_t leafBegin, uint32_t leafEnd,
+             bool avx2 = true);
+    // Overlay node n's lanes after run (+inf: not reached).
+    const double* distances(uint32_t n) const { return dist_.data() + uint64_t(n) * kLanes; }
+
+private:
+    void lower(uint32_t node, const double* lanes);
+    std::vector<double> dist_;       // overlay nodes x kLanes
+    std::vector<uint16_t> pending_;  // per node: lanes lowered since it last relaxed
+    std::vector<uint8_t> reached_;   // per node: some lane finite (then in touched_)
+    std::vector<uint32_t> touched_;  // nodes with a finite lane, reset at the next run
+    std::vector<uint32_t> hitColumn_;  // a row's columns that lower some lane ...
+    std::vector<uint16_t> hitLanes_;   // ... and which lanes
+    std::vector<std::pair<double, uint32_t>> heap_;  // (smallest pending lane, node), stale entries skipped
+};
+
+}  // namespace vorogeo

@@ -17,8 +17,9 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr uint32_t kLanes = BlockRuns::kLanes;
+constexpr uint32_t kNoNode = UINT32_MAX;
 
-// Row `row` (S quanta; column `slot` is the node itself) of a node whose relaxing lanes are
+// Row `row` (S quanta; column `slot` is the node itself, kNoNode columns have none) of a node whose relaxing lanes are
 // `source` (+inf in the others), against the lanes of the row's nodes (dist, kLanes per
 // overlay node, `to`): the columns where some lane of source + quantum * scale is lower,
 // with those lanes as a mask, into hitColumn / hitLanes. Returns their number.
@@ -26,7 +27,7 @@ uint32_t lowerHits(const double* source, double scale, const uint16_t* row, uint
                    const uint32_t* to, const double* dist, uint32_t* hitColumn, uint16_t* hitLanes) {
     uint32_t hits = 0;
     for (uint32_t j = 0; j < S; ++j) {
-        if (row[j] == noPath || j == slot) continue;
+        if (row[j] == noPath || j == slot || to[j] == kNoNode) continue;
         const double w = double(row[j]) * scale;
         const double* n = dist + uint64_t(to[j]) * kLanes;
         uint32_t mask = 0;
@@ -47,7 +48,7 @@ __attribute__((target("avx2"))) uint32_t lowerHitsAvx2(const double* source, dou
                   s3 = _mm256_loadu_pd(source + 12);
     uint32_t hits = 0;
     for (uint32_t j = 0; j < S; ++j) {
-        if (row[j] == noPath || j == slot) continue;
+        if (row[j] == noPath || j == slot || to[j] == kNoNode) continue;
         const __m256d w = _mm256_set1_pd(double(row[j]) * scale);
         const double* n = dist + uint64_t(to[j]) * kLanes;
         const int m0 = _mm256_movemask_pd(_mm256_cmp_pd(_mm256_add_pd(s0, w), _mm256_loadu_pd(n), _CMP_LT_OQ));

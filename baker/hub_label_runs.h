@@ -18,18 +18,19 @@
 
 namespace vorogeo {
 
-// The first-layer overlay as the label runs read it: every first-layer matrix unpacked,
-// nodes renumbered to the overlay's own (the nodes of first-layer slots).
+// A graph of patch matrices as the block runs read it: the first-layer overlay for the
+// labels (every first-layer matrix unpacked, nodes renumbered to the overlay's own), or a
+// first-layer patch's second-layer node graph for its inner rows.
 struct LabelOverlay {
     uint32_t noPath = 0;                  // the quantum that means "no path"
-    std::vector<uint64_t> quantaBegin;    // first-layer patches + 1 offsets into quanta
+    std::vector<uint64_t> quantaBegin;    // patches + 1 offsets into quanta
     std::vector<uint16_t> quanta;         // per patch its slot x slot matrix
     std::vector<double> scale;            // per patch: distance per quantum
-    std::vector<uint32_t> slotBegin;      // first-layer patches + 1 offsets into slotNode
-    std::vector<uint32_t> slotNode;       // per first-layer slot: its overlay node
-    std::vector<uint32_t> memberBegin;    // overlay nodes + 1 offsets into members
-    std::vector<std::pair<uint32_t, uint32_t>> members;  // per overlay node: (patch, slot)
-    std::vector<uint32_t> patchLeaf;      // per patch: its leaf tree node (tree in preorder)
+    std::vector<uint32_t> slotBegin;      // patches + 1 offsets into slotNode
+    std::vector<uint32_t> slotNode;       // per slot: its overlay node (UINT32_MAX: none, skipped)
+    std::vector<uint32_t> memberBegin;    // nodes + 1 offsets into members
+    std::vector<std::pair<uint32_t, uint32_t>> members;  // per node: its rows (patch, slot)
+    std::vector<uint32_t> patchLeaf;      // per patch: its leaf tree node (tree in preorder), or 0
 };
 
 // Scratch of one thread's block runs.

@@ -389,13 +389,15 @@ void innerNodesOf(const View& v, const std::vector<uint32_t>& children, std::vec
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
 }
 
-// Inner rows of first-layer patch f (`nodes`: innerNodesOf its children): Dijkstra inside
-// f's second-layer node graph from each of f's first-layer nodes, as the runtime's search
-// relaxes rows (active nodes only). The runs go over local ids (f's active nodes in
+// Inner rows of first-layer patch f (`nodes`: innerNodesOf its children): shortest
+// distances inside f's second-layer node graph from each of f's first-layer nodes, as the
+// runtime's search relaxes rows (active nodes only); with blockRuns a search per
+// kHubBlock of them (hub_label_runs.h), else a Dijkstra each (the tests' reference, the
+// same numbers). The runs go over local ids (f's active nodes in
 // increasing id, so ties settle as with global ids) and f's second-layer node blocks
 // unpacked once, in the order the graph lists each node's patches.
 void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children, const std::vector<uint32_t>& nodes,
-               std::vector<double>& values) {
+               bool blockRuns, std::vector<double>& values) {
     const fb::PatchRecord& fr = v.first(f);
     const uint32_t K = fr.slot_count();
     values.assign(nodes.size() * K, kInf);
@@ -437,6 +439,46 @@ void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children,
         rowsBegin[r + 1] = uint32_t(rows.size());
     }
 
+    if (blockRuns) {
+        // A block of kHubBlock slots per search. A merged-away first-layer node is a node of
+        // its own here, after the inner nodes: it has its rows but is no row's column, so it
+        // only starts its lane.
+        LabelOverlay o;
+        o.noPath = kNoPath;
+        o.quanta = std::move(quanta);
+        for (const Child& q : local) {
+            o.quantaBegin.push_back(q.quantaBegin);
+            o.slotBegin.push_back(q.slotBegin);
+            o.scale.push_back(q.scale);
+        }
+        o.quantaBegin.push_back(o.quanta.size());
+        o.slotBegin.push_back(uint32_t(slotLocal.size()));
+        o.slotNode = slotLocal;
+        o.patchLeaf.assign(local.size(), 0);
+        o.members = rows;
+        o.memberBegin = rowsBegin;
+        std::vector<uint32_t> sourceOf(K);
+        for (uint32_t k = 0; k < K; ++k) {
+            const uint32_t b = v.slot(fr.slot_begin() + k);
+            if (v.active(b)) {
+                sourceOf[k] = localOf(b);
+                continue;
+            }
+            sourceOf[k] = uint32_t(o.memberBegin.size() - 1);
+            membershipsOf(b, o.members);
+            o.memberBegin.push_back(uint32_t(o.members.size()));
+        }
+        BlockRuns runs;
+        for (uint32_t k = 0; k < K; k += kHubBlock) {
+            const uint32_t count = std::min(kHubBlock, K - k);
+            runs.run(o, sourceOf.data() + k, count, 0, 1);
+            for (size_t r = 0; r < nodes.size(); ++r) {
+                const double* d = runs.distances(uint32_t(r));
+                for (uint32_t i = 0; i < count; ++i) values[r * K + k + i] = d[i];
+            }
+        }
+        return;
+    }
     Dijkstra dj;
     auto relaxRow = [&](const std::pair<uint32_t, uint32_t>& row, double du) {
         const Child& q = local[row.first];
@@ -592,7 +634,7 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
         checkPlan(sizes);
     }
     parallelFor(v.firstCount, [&](size_t f) {
-        innerRows(v, uint32_t(f), children[f], innerNodes[f], innerValues[f]);
+        innerRows(v, uint32_t(f), children[f], innerNodes[f], runs == HubLabelRuns::blocks, innerValues[f]);
         tick(1);
     });
 

@@ -260,21 +260,33 @@ double twoHop(const HubLabels& l, const std::vector<uint32_t>& hubEnd, const std
 TEST_CASE("hub labels: a search per block of hubs gives the Dijkstra per hub's labels", "[hub]") {
     // The bake's label-correcting search over vectors of 16 lanes (hub_label_runs.h) ends at
     // the distances of separate Dijkstra runs over the same subtree, so at the same steps.
-    const std::vector<uint8_t>& blob = labelledBlob();  // uncompressed: the flatbuffer follows the header
-    const std::vector<uint8_t> flatbuffer(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end());
-    const HubLabels blocks = computeHubLabels(flatbuffer);
-    const HubLabels perHub = computeHubLabels(flatbuffer, HubProgress(), HubPlanCheck(), HubLabelRuns::perHub);
-    REQUIRE(blocks.columns.size() == perHub.columns.size());
-    CHECK(blocks.labelScale == perHub.labelScale);
-    size_t differ = 0, unreachable = 0;
-    for (size_t k = 0; k < blocks.columns.size(); ++k) {
-        differ += blocks.columns[k] != perHub.columns[k];
-        unreachable += perHub.columns[k] == kHubUnreachable;
+    // Also on a pruned graph, whose merged-away first-layer nodes start inner rows through
+    // their own rows.
+    for (double delta : {0.0, 0.05}) {
+        const std::vector<uint8_t> blob = bakeLabelled(false, 0, delta);  // the flatbuffer follows the header
+        const std::vector<uint8_t> flatbuffer(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end());
+        const fb::Graph* g = fb::GetGraph(flatbuffer.data());
+        size_t mergedAway = 0;  // first-layer slots whose node is merged away
+        for (uint32_t p = 0; p < g->first_patches()->size(); ++p) {
+            const fb::PatchRecord& r = *g->first_patches()->Get(p);
+            for (uint32_t j = 0; j < r.slot_count(); ++j)
+                mergedAway += (g->node_flags()->Get(g->slots()->Get(r.slot_begin() + j)) & 1u) != 0;
+        }
+        CHECK((delta > 0) == (mergedAway > 0));
+        const HubLabels blocks = computeHubLabels(flatbuffer);
+        const HubLabels perHub = computeHubLabels(flatbuffer, HubProgress(), HubPlanCheck(), HubLabelRuns::perHub);
+        REQUIRE(blocks.columns.size() == perHub.columns.size());
+        CHECK(blocks.labelScale == perHub.labelScale);
+        size_t differ = 0, unreachable = 0;
+        for (size_t k = 0; k < blocks.columns.size(); ++k) {
+            differ += blocks.columns[k] != perHub.columns[k];
+            unreachable += perHub.columns[k] == kHubUnreachable;
+        }
+        CHECK(differ == 0);
+        CHECK(unreachable < blocks.columns.size() / 2);
+        CHECK(blocks.inner == perHub.inner);
+        CHECK(blocks.exitLists == perHub.exitLists);
     }
-    CHECK(differ == 0);
-    CHECK(unreachable < blocks.columns.size() / 2);
-    CHECK(blocks.inner == perHub.inner);
-    CHECK(blocks.exitLists == perHub.exitLists);
 }
 
 TEST_CASE("hub labels: runs inside each subtree give the whole overlay's hub-to-hub distances", "[hub]") {

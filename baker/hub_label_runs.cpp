@@ -1,7 +1,6 @@
 #include "hub_label_runs.h"
 
 #include <algorithm>
-#include <functional>
 #include <limits>
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -78,8 +77,49 @@ void BlockRuns::lower(uint32_t node, const double* lanes) {
     }
     if (lowered == 0) return;
     pending_[node] = uint16_t(pending_[node] | lowered);
-    heap_.push_back({key, node});
-    std::push_heap(heap_.begin(), heap_.end(), std::greater<std::pair<double, uint32_t>>());
+    push(node, key);
+}
+
+void BlockRuns::push(uint32_t node, double key) {
+    uint32_t i = position_[node];
+    if (i == kNoNode) {
+        i = uint32_t(heap_.size());
+        heap_.push_back(node);
+        key_[node] = key;
+    } else if (!(key < key_[node])) {
+        return;
+    } else {
+        key_[node] = key;
+    }
+    while (i > 0) {
+        const uint32_t parent = (i - 1) / 4;
+        if (!before(node, heap_[parent])) break;
+        place(i, heap_[parent]);
+        i = parent;
+    }
+    place(i, node);
+}
+
+uint32_t BlockRuns::pop() {
+    const uint32_t top = heap_[0], last = heap_.back();
+    heap_.pop_back();
+    position_[top] = kNoNode;
+    const uint32_t n = uint32_t(heap_.size());
+    if (n == 0) return top;
+    uint32_t i = 0;
+    for (;;) {
+        const uint32_t first = 4 * i + 1;
+        if (first >= n) break;
+        uint32_t best = first;
+        const uint32_t end = first + 4 < n ? first + 4 : n;
+        for (uint32_t c = first + 1; c < end; ++c)
+            if (before(heap_[c], heap_[best])) best = c;
+        if (!before(heap_[best], last)) break;
+        place(i, heap_[best]);
+        i = best;
+    }
+    place(i, last);
+    return top;
 }
 
 void BlockRuns::run(const LabelOverlay& o, const uint32_t* sources, uint32_t count, uint32_t leafBegin,
@@ -87,6 +127,8 @@ void BlockRuns::run(const LabelOverlay& o, const uint32_t* sources, uint32_t cou
     const size_t nodes = o.memberBegin.size() - 1;
     if (pending_.size() != nodes) {
         dist_.assign(nodes * kLanes, kInf);
+        key_.assign(nodes, kInf);
+        position_.assign(nodes, kNoNode);
         pending_.assign(nodes, 0);
         reached_.assign(nodes, 0);
         touched_.clear();
@@ -104,7 +146,6 @@ void BlockRuns::run(const LabelOverlay& o, const uint32_t* sources, uint32_t cou
     const bool useAvx2 = false;
     (void)avx2;
 #endif
-    const auto greater = std::greater<std::pair<double, uint32_t>>();
     auto reach = [&](uint32_t n) {
         if (reached_[n]) return;
         reached_[n] = 1;
@@ -118,11 +159,8 @@ void BlockRuns::run(const LabelOverlay& o, const uint32_t* sources, uint32_t cou
     }
     double source[kLanes], candidate[kLanes];
     while (!heap_.empty()) {
-        std::pop_heap(heap_.begin(), heap_.end(), greater);
-        const uint32_t u = heap_.back().second;
-        heap_.pop_back();
+        const uint32_t u = pop();
         const uint32_t relax = pending_[u];
-        if (relax == 0) continue;  // an older entry: its lanes relaxed already
         pending_[u] = 0;
         const double* du = distances(u);
         for (uint32_t i = 0; i < kLanes; ++i) source[i] = (relax >> i) & 1u ? du[i] : kInf;

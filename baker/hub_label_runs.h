@@ -55,7 +55,18 @@ private:
     std::vector<uint32_t> touched_;  // nodes with a finite lane, reset at the next run
     std::vector<uint32_t> hitColumn_;  // a row's columns that lower some lane ...
     std::vector<uint16_t> hitLanes_;   // ... and which lanes
-    std::vector<std::pair<double, uint32_t>> heap_;  // (smallest pending lane, node), stale entries skipped
+    // The queue: nodes with pending lanes, by their smallest pending lane (then node id),
+    // in an indexed 4-ary heap (one entry per node, its key lowered in place).
+    void push(uint32_t node, double key);
+    uint32_t pop();
+    bool before(uint32_t a, uint32_t b) const { return key_[a] < key_[b] || (key_[a] == key_[b] && a < b); }
+    void place(uint32_t i, uint32_t node) {
+        heap_[i] = node;
+        position_[node] = i;
+    }
+    std::vector<double> key_;
+    std::vector<uint32_t> position_;  // in heap_, UINT32_MAX: not queued
+    std::vector<uint32_t> heap_;
 };
 
 }  // namespace vorogeo

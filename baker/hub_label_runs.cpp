@@ -18,12 +18,12 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr uint32_t kLanes = BlockRuns::kLanes;
 constexpr uint32_t kNoNode = UINT32_MAX;
 
-// Row `row` (S quanta; column `slot` is the node itself, kNoNode columns have none) of a node whose relaxing lanes are
-// `source` (+inf in the others), against the lanes of the row's nodes (dist, kLanes per
-// overlay node, `to`): the columns where some lane of source + quantum * scale is lower,
-// with those lanes as a mask, into hitColumn / hitLanes. Returns their number.
+// Row `row` (S quanta; column `slot` is the node itself, kNoNode columns have none) of a
+// node whose relaxing lanes are `source` (+inf in the others), against the lanes of the
+// row's nodes (dist, kLanes per node, `to`): the columns where some lane of source +
+// quantum * scale is lower, into hitColumn. Returns their number.
 uint32_t lowerHits(const double* source, double scale, const uint16_t* row, uint32_t S, uint32_t slot, uint32_t noPath,
-                   const uint32_t* to, const double* dist, uint32_t* hitColumn, uint16_t* hitLanes) {
+                   const uint32_t* to, const double* dist, uint32_t* hitColumn) {
     uint32_t hits = 0;
     for (uint32_t j = 0; j < S; ++j) {
         if (row[j] == noPath || j == slot || to[j] == kNoNode) continue;
@@ -32,7 +32,6 @@ uint32_t lowerHits(const double* source, double scale, const uint16_t* row, uint
         uint32_t mask = 0;
         for (uint32_t i = 0; i < kLanes; ++i) mask |= uint32_t(source[i] + w < n[i]) << i;
         hitColumn[hits] = j;
-        hitLanes[hits] = uint16_t(mask);
         hits += mask != 0;
     }
     return hits;
@@ -42,7 +41,7 @@ uint32_t lowerHits(const double* source, double scale, const uint16_t* row, uint
 // The same, four lanes per instruction (the same sums and comparisons).
 __attribute__((target("avx2"))) uint32_t lowerHitsAvx2(const double* source, double scale, const uint16_t* row,
                                                        uint32_t S, uint32_t slot, uint32_t noPath, const uint32_t* to,
-                                                       const double* dist, uint32_t* hitColumn, uint16_t* hitLanes) {
+                                                       const double* dist, uint32_t* hitColumn) {
     const __m256d s0 = _mm256_loadu_pd(source), s1 = _mm256_loadu_pd(source + 4), s2 = _mm256_loadu_pd(source + 8),
                   s3 = _mm256_loadu_pd(source + 12);
     uint32_t hits = 0;
@@ -54,10 +53,8 @@ __attribute__((target("avx2"))) uint32_t lowerHitsAvx2(const double* source, dou
         const int m1 = _mm256_movemask_pd(_mm256_cmp_pd(_mm256_add_pd(s1, w), _mm256_loadu_pd(n + 4), _CMP_LT_OQ));
         const int m2 = _mm256_movemask_pd(_mm256_cmp_pd(_mm256_add_pd(s2, w), _mm256_loadu_pd(n + 8), _CMP_LT_OQ));
         const int m3 = _mm256_movemask_pd(_mm256_cmp_pd(_mm256_add_pd(s3, w), _mm256_loadu_pd(n + 12), _CMP_LT_OQ));
-        const uint32_t mask = uint32_t(m0 | m1 << 4 | m2 << 8 | m3 << 12);
         hitColumn[hits] = j;
-        hitLanes[hits] = uint16_t(mask);
-        hits += mask != 0;
+        hits += (m0 | m1 | m2 | m3) != 0;
     }
     return hits;
 }
@@ -171,18 +168,12 @@ void BlockRuns::run(const LabelOverlay& o, const uint32_t* sources, uint32_t cou
             const uint16_t* row = o.quanta.data() + o.quantaBegin[p] + uint64_t(slot) * S;
             const uint32_t* to = o.slotNode.data() + o.slotBegin[p];
             const double scale = o.scale[p];
-            if (hitColumn_.size() < S) {
-                hitColumn_.resize(S);
-                hitLanes_.resize(S);
-            }
+            if (hitColumn_.size() < S) hitColumn_.resize(S);
 #if VG_LABEL_RUNS_AVX2
-            const uint32_t hits = useAvx2 ? lowerHitsAvx2(source, scale, row, S, slot, o.noPath, to, dist_.data(),
-                                                          hitColumn_.data(), hitLanes_.data())
-                                          : lowerHits(source, scale, row, S, slot, o.noPath, to, dist_.data(),
-                                                      hitColumn_.data(), hitLanes_.data());
+            const uint32_t hits = useAvx2 ? lowerHitsAvx2(source, scale, row, S, slot, o.noPath, to, dist_.data(), hitColumn_.data())
+                                          : lowerHits(source, scale, row, S, slot, o.noPath, to, dist_.data(), hitColumn_.data());
 #else
-            const uint32_t hits =
-                lowerHits(source, scale, row, S, slot, o.noPath, to, dist_.data(), hitColumn_.data(), hitLanes_.data());
+            const uint32_t hits = lowerHits(source, scale, row, S, slot, o.noPath, to, dist_.data(), hitColumn_.data());
 #endif
             // Each column is a different node, so lowering one never changes another's test.
             for (uint32_t h = 0; h < hits; ++h) {

@@ -1,12 +1,13 @@
-// The label runs of the hub-label stage (hub_labels.h): distances from the hubs of one
-// label block (up to kHubBlock consecutive hubs of a tree node) over the first-layer
-// patches of the node's subtree, all of the block's hubs in one search.
+// The searches of the hub-label stage (hub_labels.h), 16 sources at a time: a label
+// block's hubs (up to kHubBlock consecutive hubs of a tree node) over the first-layer
+// patches of the node's subtree, or 16 first-layer nodes of a patch over its second-layer
+// node graph (its inner rows).
 //
-// A label run per hub reads, for every node it settles, that node's rows of its patches'
-// matrices; the runs of a block's hubs (neighbours along one separator) settle nearly the
-// same nodes in nearly the same order, so each row came from memory once per hub. Here a
-// node holds a vector of kHubBlock distances (lane i: from the block's hub i), and a row
-// read once lowers all lanes. The search is label-correcting: a node is taken from the
+// A run per source reads, for every node it settles, that node's rows of its patches'
+// matrices; the runs of neighbouring sources (a block's hubs lie along one separator)
+// settle nearly the same nodes in nearly the same order, so each row came from memory
+// once per source. Here a node holds a vector of 16 distances (lane i: from source i),
+// and a row read once lowers all lanes. The search is label-correcting: a node is taken from the
 // queue by the smallest of its lanes lowered since it last relaxed, and relaxes those
 // lanes (a lane may be lowered again after it relaxed, and then relaxes again). It ends
 // at the shortest distances over the subtree's patches, as separate Dijkstra runs do.
@@ -38,13 +39,13 @@ class BlockRuns {
 public:
     static constexpr uint32_t kLanes = 16;  // = kHubBlock
 
-    // Distances from sources[0, count) (overlay nodes, count <= kLanes; lane i from
-    // sources[i]) to every overlay node over the patches whose leaf lies in [leafBegin,
-    // leafEnd) (a subtree: a range of tree nodes in preorder). avx2: use AVX2 where the
+    // Distances from sources[0, count) (nodes, count <= kLanes; lane i from sources[i]) to
+    // every node over the patches whose leaf lies in [leafBegin, leafEnd) (a subtree: a
+    // range of tree nodes in preorder). avx2: use AVX2 where the
     // processor has it (the same numbers either way).
     void run(const LabelOverlay& o, const uint32_t* sources, uint32_t count, uint32_t leafBegin, uint32_t leafEnd,
              bool avx2 = true);
-    // Overlay node n's lanes after run (+inf: not reached).
+    // Node n's lanes after run (+inf: not reached).
     const double* distances(uint32_t n) const { return dist_.data() + uint64_t(n) * kLanes; }
 
 private:
@@ -53,8 +54,7 @@ private:
     std::vector<uint16_t> pending_;  // per node: lanes lowered since it last relaxed
     std::vector<uint8_t> reached_;   // per node: some lane finite (then in touched_)
     std::vector<uint32_t> touched_;  // nodes with a finite lane, reset at the next run
-    std::vector<uint32_t> hitColumn_;  // a row's columns that lower some lane ...
-    std::vector<uint16_t> hitLanes_;   // ... and which lanes
+    std::vector<uint32_t> hitColumn_;  // a row's columns that lower some lane
     // The queue: nodes with pending lanes, by their smallest pending lane (then node id),
     // in an indexed 4-ary heap (one entry per node, its key lowered in place).
     void push(uint32_t node, double key);

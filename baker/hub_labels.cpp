@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <utility>
 
 #include "hub_exit_lists.h"
 #include "hub_label_runs.h"
@@ -510,13 +511,13 @@ void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children,
 // The overlay for the block runs: the unpacked matrices, and the nodes of first-layer
 // slots renumbered in slot order (overlayOf: graph node -> overlay node, kNo if none) with
 // their memberships in the graph's order.
-void buildLabelOverlay(const View& v, const std::vector<uint64_t>& quantaBegin, const std::vector<uint16_t>& quanta,
-                       const std::vector<double>& patchScale, const std::vector<uint32_t>& slotNode,
+void buildLabelOverlay(const View& v, std::vector<uint64_t> quantaBegin, std::vector<uint16_t> quanta,
+                       std::vector<double> patchScale, const std::vector<uint32_t>& slotNode,
                        const std::vector<uint32_t>& firstLeaf, LabelOverlay& o, std::vector<uint32_t>& overlayOf) {
     o.noPath = kNoPath;
-    o.quantaBegin = quantaBegin;
-    o.quanta = quanta;
-    o.scale = patchScale;
+    o.quantaBegin = std::move(quantaBegin);
+    o.quanta = std::move(quanta);
+    o.scale = std::move(patchScale);
     o.patchLeaf = firstLeaf;
     o.slotBegin.assign(size_t(v.firstCount) + 1, 0);
     for (uint32_t p = 0; p < v.firstCount; ++p) o.slotBegin[p + 1] = o.slotBegin[p] + v.first(p).slot_count();
@@ -661,7 +662,9 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
     if (runs == HubLabelRuns::blocks) {
         LabelOverlay overlay;
         std::vector<uint32_t> overlayOf(v.nodes, kNo);
-        buildLabelOverlay(v, quantaBegin, quanta, patchScale, slotNode, out.firstLeaf, overlay, overlayOf);
+        // (the unpacked matrices move into it: only the per-hub references read them too)
+        buildLabelOverlay(v, std::move(quantaBegin), std::move(quanta), std::move(patchScale), slotNode, out.firstLeaf,
+                          overlay, overlayOf);
         std::vector<std::pair<uint32_t, uint32_t>> blocks;  // (tree node, block)
         for (uint32_t t = 0; t < T; ++t)
             for (uint32_t b = 0; b * kHubBlock < out.tree[t].hubCount; ++b) blocks.push_back({t, b});

@@ -16,6 +16,7 @@
 #include "blob_test_helpers.h"
 #include "generators.h"
 #include "hub_exit_lists.h"
+#include "hub_label_runs.h"
 #include "hub_labels.h"
 #include "runtime_graph.h"
 #include "vg_hub_labels.h"
@@ -256,6 +257,85 @@ double twoHop(const HubLabels& l, const std::vector<uint32_t>& hubEnd, const std
 }
 
 }  // namespace
+
+TEST_CASE("hub labels: block runs give a Dijkstra per source's distances, AVX2 and portable", "[hub]") {
+    // Random matrices over shared nodes: columns without a node, "no path" entries, patches
+    // outside the searched leaf range, fewer sources than lanes, and a reused scratch.
+    std::mt19937 rng(3);
+    LabelOverlay o;
+    o.noPath = 4095;
+    const uint32_t nodes = 160, patches = 14;
+    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> rowsOf(nodes);
+    o.quantaBegin.push_back(0);
+    o.slotBegin.push_back(0);
+    for (uint32_t p = 0; p < patches; ++p) {
+        const uint32_t S = 5 + rng() % 36;
+        std::vector<uint32_t> pick(nodes);
+        for (uint32_t n = 0; n < nodes; ++n) pick[n] = n;
+        std::shuffle(pick.begin(), pick.end(), rng);
+        for (uint32_t j = 0; j < S; ++j) {
+            const bool none = rng() % 20 == 0;
+            o.slotNode.push_back(none ? UINT32_MAX : pick[j]);
+            if (!none) rowsOf[pick[j]].push_back({p, j});
+        }
+        for (uint32_t i = 0; i < S; ++i)
+            for (uint32_t j = 0; j < S; ++j)
+                o.quanta.push_back(uint16_t(i == j ? 0 : rng() % 10 == 0 ? o.noPath : 1 + rng() % 4000));
+        o.quantaBegin.push_back(o.quanta.size());
+        o.slotBegin.push_back(uint32_t(o.slotNode.size()));
+        o.scale.push_back(0.001 * (1 + rng() % 7));
+        o.patchLeaf.push_back(rng() % 4);
+    }
+    o.memberBegin.push_back(0);
+    for (uint32_t n = 0; n < nodes; ++n) {
+        o.members.insert(o.members.end(), rowsOf[n].begin(), rowsOf[n].end());
+        o.memberBegin.push_back(uint32_t(o.members.size()));
+    }
+    auto dijkstra = [&](uint32_t source, uint32_t leafBegin, uint32_t leafEnd) {
+        std::vector<double> d(nodes, HUGE_VAL);
+        std::vector<bool> done(nodes, false);
+        d[source] = 0;
+        for (;;) {
+            uint32_t u = UINT32_MAX;
+            for (uint32_t n = 0; n < nodes; ++n)
+                if (!done[n] && std::isfinite(d[n]) && (u == UINT32_MAX || d[n] < d[u])) u = n;
+            if (u == UINT32_MAX) return d;
+            done[u] = true;
+            for (uint32_t m = o.memberBegin[u]; m < o.memberBegin[u + 1]; ++m) {
+                const uint32_t p = o.members[m].first, slot = o.members[m].second;
+                if (o.patchLeaf[p] < leafBegin || o.patchLeaf[p] >= leafEnd) continue;
+                const uint32_t S = o.slotBegin[p + 1] - o.slotBegin[p];
+                for (uint32_t j = 0; j < S; ++j) {
+                    const uint16_t q = o.quanta[o.quantaBegin[p] + uint64_t(slot) * S + j];
+                    const uint32_t to = o.slotNode[o.slotBegin[p] + j];
+                    if (q == o.noPath || to == UINT32_MAX) continue;
+                    d[to] = std::min(d[to], d[u] + double(q) * o.scale[p]);
+                }
+            }
+        }
+    };
+    BlockRuns avx2, portable;
+    for (const auto& leaves : {std::pair<uint32_t, uint32_t>{0, 4}, std::pair<uint32_t, uint32_t>{1, 3}}) {
+        uint32_t sources[BlockRuns::kLanes];
+        for (uint32_t i = 0; i < 11; ++i) sources[i] = (i * 37 + leaves.first * 5) % nodes;
+        avx2.run(o, sources, 11, leaves.first, leaves.second, true);
+        portable.run(o, sources, 11, leaves.first, leaves.second, false);
+        size_t differ = 0, reached = 0, unreachedLanes = 0;
+        for (uint32_t i = 0; i < 11; ++i) {
+            const std::vector<double> reference = dijkstra(sources[i], leaves.first, leaves.second);
+            for (uint32_t n = 0; n < nodes; ++n) {
+                differ += avx2.distances(n)[i] != reference[n];
+                differ += portable.distances(n)[i] != reference[n];
+                reached += std::isfinite(reference[n]) && reference[n] > 0;
+            }
+        }
+        for (uint32_t n = 0; n < nodes; ++n)
+            for (uint32_t i = 11; i < BlockRuns::kLanes; ++i) unreachedLanes += !std::isfinite(avx2.distances(n)[i]);
+        CHECK(differ == 0);
+        CHECK(reached > 11 * nodes / 4);
+        CHECK(unreachedLanes == nodes * (BlockRuns::kLanes - 11));
+    }
+}
 
 TEST_CASE("hub labels: a search per block of hubs gives the Dijkstra per hub's labels", "[hub]") {
     // The bake's label-correcting search over vectors of 16 lanes (hub_label_runs.h) ends at

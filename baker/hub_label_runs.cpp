@@ -78,45 +78,9 @@ void BlockRuns::lower(uint32_t node, const double* lanes) {
 }
 
 void BlockRuns::push(uint32_t node, double key) {
-    uint32_t i = position_[node];
-    if (i == kNoNode) {
-        i = uint32_t(heap_.size());
-        heap_.push_back(node);
-        key_[node] = key;
-    } else if (!(key < key_[node])) {
-        return;
-    } else {
-        key_[node] = key;
-    }
-    while (i > 0) {
-        const uint32_t parent = (i - 1) / 4;
-        if (!before(node, heap_[parent])) break;
-        place(i, heap_[parent]);
-        i = parent;
-    }
-    place(i, node);
-}
-
-uint32_t BlockRuns::pop() {
-    const uint32_t top = heap_[0], last = heap_.back();
-    heap_.pop_back();
-    position_[top] = kNoNode;
-    const uint32_t n = uint32_t(heap_.size());
-    if (n == 0) return top;
-    uint32_t i = 0;
-    for (;;) {
-        const uint32_t first = 4 * i + 1;
-        if (first >= n) break;
-        uint32_t best = first;
-        const uint32_t end = first + 4 < n ? first + 4 : n;
-        for (uint32_t c = first + 1; c < end; ++c)
-            if (before(heap_[c], heap_[best])) best = c;
-        if (!before(heap_[best], last)) break;
-        place(i, heap_[best]);
-        i = best;
-    }
-    place(i, last);
-    return top;
+    if (queue_.queued(node) && !(key < key_[node])) return;
+    key_[node] = key;
+    queue_.push(node, [this](uint32_t a, uint32_t b) { return before(a, b); });
 }
 
 void BlockRuns::run(const LabelOverlay& o, const uint32_t* sources, uint32_t count, uint32_t leafBegin,
@@ -125,7 +89,7 @@ void BlockRuns::run(const LabelOverlay& o, const uint32_t* sources, uint32_t cou
     if (pending_.size() != nodes) {
         dist_.assign(nodes * kLanes, kInf);
         key_.assign(nodes, kInf);
-        position_.assign(nodes, kNoNode);
+        queue_.reset(nodes);
         pending_.assign(nodes, 0);
         reached_.assign(nodes, 0);
         touched_.clear();
@@ -136,7 +100,7 @@ void BlockRuns::run(const LabelOverlay& o, const uint32_t* sources, uint32_t cou
         reached_[n] = 0;
     }
     touched_.clear();
-    heap_.clear();
+    queue_.clear();
 #if VG_LABEL_RUNS_AVX2
     const bool useAvx2 = avx2 && __builtin_cpu_supports("avx2");
 #else
@@ -155,8 +119,9 @@ void BlockRuns::run(const LabelOverlay& o, const uint32_t* sources, uint32_t cou
         lower(sources[i], lanes);
     }
     double source[kLanes], candidate[kLanes];
-    while (!heap_.empty()) {
-        const uint32_t u = pop();
+    const auto before = [this](uint32_t a, uint32_t b) { return this->before(a, b); };
+    while (!queue_.empty()) {
+        const uint32_t u = queue_.pop(before);
         const uint32_t relax = pending_[u];
         pending_[u] = 0;
         const double* du = distances(u);

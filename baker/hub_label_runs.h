@@ -17,6 +17,8 @@
 #include <utility>
 #include <vector>
 
+#include "quad_heap.h"
+
 namespace vorogeo {
 
 // A graph of patch matrices as the block runs read it: the first-layer overlay for the
@@ -56,17 +58,11 @@ private:
     std::vector<uint32_t> touched_;  // nodes with a finite lane, reset at the next run
     std::vector<uint32_t> hitColumn_;  // a row's columns that lower some lane
     // The queue: nodes with pending lanes, by their smallest pending lane (then node id),
-    // in an indexed 4-ary heap (one entry per node, its key lowered in place).
+    // one entry per node, its key lowered in place.
     void push(uint32_t node, double key);
-    uint32_t pop();
     bool before(uint32_t a, uint32_t b) const { return key_[a] < key_[b] || (key_[a] == key_[b] && a < b); }
-    void place(uint32_t i, uint32_t node) {
-        heap_[i] = node;
-        position_[node] = i;
-    }
     std::vector<double> key_;
-    std::vector<uint32_t> position_;  // in heap_, UINT32_MAX: not queued
-    std::vector<uint32_t> heap_;
+    QuadHeap queue_;
 };
 
 }  // namespace vorogeo

@@ -11,6 +11,7 @@
 #include "hub_exit_lists.h"
 #include "hub_label_runs.h"
 #include "parallel.h"
+#include "quad_heap.h"
 #include "vorogeo_distance_coding.h"
 #include "vorogeo_generated.h"
 
@@ -48,74 +49,35 @@ struct View {
 struct Dijkstra {
     std::vector<double> dist;
     std::vector<uint32_t> via;
-    std::vector<uint32_t> position;  // in heap; kNo: not queued (never, or settled)
     std::vector<uint32_t> touched;
-    std::vector<uint32_t> heap;
+    QuadHeap queue;
 
     void begin(size_t n) {
         if (dist.size() != n) {
             dist.assign(n, kInf);
             via.assign(n, kNo);
-            position.assign(n, kNo);
+            queue.reset(n);
             touched.clear();
         }
         for (uint32_t u : touched) {
             dist[u] = kInf;
             via[u] = kNo;
-            position[u] = kNo;
         }
         touched.clear();
-        heap.clear();
+        queue.clear();
     }
     bool before(uint32_t a, uint32_t b) const { return dist[a] < dist[b] || (dist[a] == dist[b] && a < b); }
-    void place(uint32_t i, uint32_t u) {
-        heap[i] = u;
-        position[u] = i;
-    }
-    void up(uint32_t i) {
-        const uint32_t u = heap[i];
-        while (i > 0) {
-            const uint32_t parent = (i - 1) / 4;
-            if (!before(u, heap[parent])) break;
-            place(i, heap[parent]);
-            i = parent;
-        }
-        place(i, u);
-    }
     void offer(uint32_t u, double d, uint32_t from) {
         if (!(d < dist[u])) return;
-        if (dist[u] == kInf) {
-            touched.push_back(u);
-            heap.push_back(u);
-            position[u] = uint32_t(heap.size() - 1);
-        }
+        if (dist[u] == kInf) touched.push_back(u);
         dist[u] = d;
         via[u] = from;
-        up(position[u]);
+        queue.push(u, [this](uint32_t a, uint32_t b) { return before(a, b); });
     }
     // The next node to settle, kNo when none is left.
     uint32_t next() {
-        if (heap.empty()) return kNo;
-        const uint32_t top = heap[0], last = heap.back();
-        heap.pop_back();
-        position[top] = kNo;
-        const uint32_t n = uint32_t(heap.size());
-        if (n > 0) {
-            uint32_t i = 0;
-            for (;;) {
-                const uint32_t first = 4 * i + 1;
-                if (first >= n) break;
-                uint32_t best = first;
-                const uint32_t end = first + 4 < n ? first + 4 : n;
-                for (uint32_t c = first + 1; c < end; ++c)
-                    if (before(heap[c], heap[best])) best = c;
-                if (!before(heap[best], last)) break;
-                place(i, heap[best]);
-                i = best;
-            }
-            place(i, last);
-        }
-        return top;
+        if (queue.empty()) return kNo;
+        return queue.pop([this](uint32_t a, uint32_t b) { return before(a, b); });
     }
 };
 

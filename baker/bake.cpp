@@ -135,9 +135,10 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
                               report.quantisationMaxAbs);
     if (progress) progress("landmarks", 1.0);
     clock.end("landmarks");
+    Payload payload;
     if (options.hubLabels) {
         if (progress) progress("hub labels", 0.0);
-        const HubLabels hubs = computeHubLabels(
+        HubLabels hubs = computeHubLabels(
             buffer, [&](double f) { if (progress) progress("hub labels", f); },
             [&](const HubLabelSizes& sizes) {
                 checkHubLabelLimits(buffer.size(), sizes, vertices, options, residentBytes());
@@ -148,10 +149,15 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
         report.hubInnerEntries = hubs.inner.size();
         buffer = buildGraphBuffer(mesh, partition, geodesics.first, geodesics.second, secondInactive, params,
                                   landmarks, report.quantisationMaxAbs, hubs);
+        payload = withLabelTables(std::move(buffer), hubs);
+        hubs = HubLabels();  // its tables are in the payload now
         clock.end("hub labels");
+    } else {
+        payload.flatbufferSize = buffer.size();
+        payload.bytes = std::move(buffer);
     }
-    report.flatbufferBytes = buffer.size();
-    std::vector<uint8_t> blob = packContainer(std::move(buffer), options.compress, options.compact, options.compressionLevel);
+    report.flatbufferBytes = payload.flatbufferSize;
+    std::vector<uint8_t> blob = packContainer(std::move(payload), options.compress, options.compact, options.compressionLevel);
     report.blobBytes = blob.size();
     if (progress) progress("writing blob", 1.0);
     clock.end(options.compress ? "compress" : "container");

@@ -75,18 +75,18 @@ void checkFlatbufferSize(uint64_t bytes, uint64_t vertices) {
 
 void checkHubLabelLimits(uint64_t graphBytes, const HubLabelSizes& sizes, uint64_t vertices, const BakeOptions& o,
                          uint64_t residentNow) {
-    // 16-bit steps per entry and a 32-bit id per inner node: the least the tables add.
+    // 16-bit steps per entry, after the flatbuffer (schema/vorogeo_container.h); in it, a
+    // 32-bit id per inner node: the least the labels add to it.
     const uint64_t entries = sizes.labelEntries + sizes.innerEntries;
     const uint64_t tableBytes = 2 * entries + 4 * sizes.innerNodes;
-    if (graphBytes + tableBytes > kMaxFlatbufferBytes)
-        throw BakeLimitError("with hub labels (" + std::to_string(sizes.labelEntries) + " label and " +
-                             std::to_string(sizes.innerEntries) + " inner entries) the blob of this mesh (" +
-                             std::to_string(vertices) + " vertices) would be at least " +
-                             formatBytes(graphBytes + tableBytes) +
+    if (graphBytes + 4 * sizes.innerNodes > kMaxFlatbufferBytes)
+        throw BakeLimitError("with hub labels (" + std::to_string(sizes.innerNodes) +
+                             " inner nodes) the flatbuffer of this mesh (" + std::to_string(vertices) +
+                             " vertices) would be at least " + formatBytes(graphBytes + 4 * sizes.innerNodes) +
                              ", over the 2 GiB limit of a flatbuffer; bake without --hub-labels or split the mesh");
-    // The stage holds each entry as a double while computing it and as steps after, then
-    // builds the labelled flatbuffer beside the graph's.
-    const uint64_t stageBytes = 10 * entries + graphBytes + tableBytes;
+    // The stage holds each entry as a float while computing it, then as steps (the floats
+    // freed as they are converted), and builds the labelled flatbuffer beside the graph's.
+    const uint64_t stageBytes = 4 * entries + graphBytes + tableBytes;
     if (o.maxMemoryBytes && residentNow + stageBytes > o.maxMemoryBytes)
         throw BakeLimitError("the hub labels of this mesh (" + std::to_string(vertices) + " vertices) need about " +
                              formatBytes(stageBytes) + " more memory (" + formatBytes(residentNow) +

@@ -239,8 +239,8 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
                             bytesOf(secondDist.bytes) + bytesOf(firstDist.bytes) + bytesOf(faceVertices) +
                             bytesOf(faceTwin) + bytesOf(partition.faceSecond) + bytesOf(vertexHalfedge) +
                             bytesOf(hubs.tree) + bytesOf(hubs.firstLeaf) + bytesOf(hubs.nodeHub) +
-                            bytesOf(hubs.columnBegin) + bytesOf(hubs.columns) + bytesOf(hubs.innerBegin) +
-                            bytesOf(hubs.innerNode) + bytesOf(hubs.innerMatrixBegin) + bytesOf(hubs.inner) + bytesOf(hubs.blockBounds) +
+                            bytesOf(hubs.columnBegin) + bytesOf(hubs.innerBegin) + bytesOf(hubs.innerNode) +
+                            bytesOf(hubs.innerMatrixBegin) + bytesOf(hubs.blockBounds) +
                             bytesOf(hubs.exitPatchBegin) + bytesOf(hubs.exitListBegin) + bytesOf(hubs.exitLists) + 4096,
                         V);
     flatbuffers::FlatBufferBuilder b(size_t(64) << 20);
@@ -274,20 +274,16 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     flatbuffers::Offset<flatbuffers::Vector<const fb::HubTreeNode*>> htV;
     flatbuffers::Offset<flatbuffers::Vector<uint32_t>> hlfV, nhV, hibV, hinV, hepV, helV;
     flatbuffers::Offset<flatbuffers::Vector<uint64_t>> hlbV, himV;
-    flatbuffers::Offset<flatbuffers::Vector<uint16_t>> hlV, hiV, hexV;
+    flatbuffers::Offset<flatbuffers::Vector<uint16_t>> hexV;
     flatbuffers::Offset<flatbuffers::Vector<float>> hbbV;
     if (withHubs) {
         htV = b.CreateVectorOfStructs(hubTree);
         hlfV = b.CreateVector(hubs.firstLeaf);
         nhV = b.CreateVector(hubs.nodeHub);
         hlbV = b.CreateVector(hubs.columnBegin);
-        // 32-byte rows that never straddle a cache line (vg_open places the buffer 64-aligned).
-        b.ForceVectorAlignment(hubs.columns.size(), sizeof(uint16_t), 32);
-        hlV = b.CreateVector(hubs.columns);
         hibV = b.CreateVector(hubs.innerBegin);
         hinV = b.CreateVector(hubs.innerNode);
         himV = b.CreateVector(hubs.innerMatrixBegin);
-        hiV = b.CreateVector(hubs.inner);
         hbbV = b.CreateVector(hubs.blockBounds);
         if (!hubs.exitPatchBegin.empty()) {
             hepV = b.CreateVector(hubs.exitPatchBegin);
@@ -333,11 +329,11 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
         g.add_node_hub(nhV);
         g.add_hub_label_scale(hubs.labelScale);
         g.add_hub_column_begin(hlbV);
-        g.add_hub_columns(hlV);
+        g.add_hub_columns_count(hubs.columns.size());
         g.add_hub_inner_begin(hibV);
         g.add_hub_inner_node(hinV);
         g.add_hub_inner_matrix_begin(himV);
-        g.add_hub_inner(hiV);
+        g.add_hub_inner_count(hubs.inner.size());
         g.add_hub_block_bounds(hbbV);
         if (!hubs.exitPatchBegin.empty()) {
             g.add_hub_exit_patch_begin(hepV);
@@ -349,40 +345,72 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     return std::vector<uint8_t>(b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize());
 }
 
-std::vector<uint8_t> sealContainer(const std::vector<uint8_t>& flatbuffer, uint32_t flags, int level) {
+Payload withLabelTables(std::vector<uint8_t> flatbuffer, const HubLabels& hubs) {
+    Payload p;
+    p.flatbufferSize = flatbuffer.size();
+    vg_label_tables at;
+    if (!vg_label_tables_at(p.flatbufferSize, hubs.columns.size(), hubs.inner.size(), &at))
+        throw std::runtime_error("hub-label tables too large for a blob");
+    p.bytes = std::move(flatbuffer);
+    if (hubs.tree.empty()) return p;
+    // Zeros pad each part to 64 bytes: a label block's 32-byte rows never straddle a
+    // cache line (vg_open unpacks the payload 64-byte aligned).
+    p.bytes.resize(at.payload_size, 0);
+    std::memcpy(p.bytes.data() + at.columns_offset, hubs.columns.data(), 2 * hubs.columns.size());
+    std::memcpy(p.bytes.data() + at.inner_offset, hubs.inner.data(), 2 * hubs.inner.size());
+    return p;
+}
+
+std::vector<uint8_t> sealContainer(const std::vector<uint8_t>& payload, uint32_t flags, int level,
+                                   uint64_t flatbufferSize) {
+    if (flatbufferSize > payload.size()) flatbufferSize = payload.size();
+    // What follows the flatbuffer (and its padding to 64 bytes): the tables.
+    const uint64_t tableStart = vg_align64(flatbufferSize);
+    const uint64_t tableBytes = payload.size() > tableStart ? payload.size() - tableStart : 0;
     std::vector<uint8_t> out(VG_CONTAINER_HEADER_SIZE);
     if (flags & VG_FLAG_ZSTD) {
-        out.resize(VG_CONTAINER_HEADER_SIZE + ZSTD_compressBound(flatbuffer.size()));
+        // Compressed into memory that zstd alone touches: a zeroed vector of the bound
+        // would make the whole bound resident (gigabytes for a large labelled mesh).
+        const size_t bound = ZSTD_compressBound(payload.size());
+        std::unique_ptr<uint8_t[]> frame(new uint8_t[bound]);
         std::unique_ptr<ZSTD_CCtx, size_t (*)(ZSTD_CCtx*)> context(ZSTD_createCCtx(), ZSTD_freeCCtx);
         if (!context) throw std::runtime_error("zstd compression failed: out of memory");
         ZSTD_CCtx_setParameter(context.get(), ZSTD_c_compressionLevel, level);
         // Coded distances: a 256 KB window keeps zstd's match copies in the cache when
         // vg_open decompresses (igea opens in 83 instead of 98 ms; the blob is 2% larger).
         if (flags & VG_FLAG_CODED_DISTANCES) ZSTD_CCtx_setParameter(context.get(), ZSTD_c_windowLog, 18);
-        const size_t n = ZSTD_compress2(context.get(), out.data() + VG_CONTAINER_HEADER_SIZE,
-                                        out.size() - VG_CONTAINER_HEADER_SIZE, flatbuffer.data(), flatbuffer.size());
+        const size_t n = ZSTD_compress2(context.get(), frame.get(), bound, payload.data(), payload.size());
         if (ZSTD_isError(n)) throw std::runtime_error(std::string("zstd compression failed: ") + ZSTD_getErrorName(n));
         out.resize(VG_CONTAINER_HEADER_SIZE + n);
+        std::memcpy(out.data() + VG_CONTAINER_HEADER_SIZE, frame.get(), n);
     } else {
-        out.resize(VG_CONTAINER_HEADER_SIZE + flatbuffer.size());
-        if (!flatbuffer.empty()) std::memcpy(out.data() + VG_CONTAINER_HEADER_SIZE, flatbuffer.data(), flatbuffer.size());
+        out.resize(VG_CONTAINER_HEADER_SIZE + payload.size());
+        if (!payload.empty()) std::memcpy(out.data() + VG_CONTAINER_HEADER_SIZE, payload.data(), payload.size());
     }
     unsigned char* h = out.data();
     std::memcpy(h, VG_CONTAINER_MAGIC, 8);  // includes the terminating zero
     vg_store_le32(h + 8, VG_FORMAT_VERSION);
     vg_store_le32(h + 12, flags);
     vg_store_le64(h + 16, out.size() - VG_CONTAINER_HEADER_SIZE);
-    vg_store_le64(h + 24, flatbuffer.size());
-    vg_store_le64(h + 32, vg_checksum64(h + VG_CONTAINER_HEADER_SIZE, out.size() - VG_CONTAINER_HEADER_SIZE));
+    vg_store_le64(h + 24, flatbufferSize);
+    vg_store_le64(h + 32, tableBytes);
+    vg_store_le64(h + 40, vg_checksum64(h + VG_CONTAINER_HEADER_SIZE, out.size() - VG_CONTAINER_HEADER_SIZE));
     return out;
 }
 
-std::vector<uint8_t> packContainer(std::vector<uint8_t> flatbuffer, bool compress, bool compact, int level) {
-    if (!compress) return sealContainer(flatbuffer, 0, level);
-    if (!compact) return sealContainer(flatbuffer, VG_FLAG_ZSTD, level);
+std::vector<uint8_t> packContainer(Payload payload, bool compress, bool compact, int level) {
+    if (!compress) return sealContainer(payload.bytes, 0, level, payload.flatbufferSize);
+    if (!compact) return sealContainer(payload.bytes, VG_FLAG_ZSTD, level, payload.flatbufferSize);
     // Coded distances compress 3x (raw quanta hardly compress at all).
-    codeDistances(flatbuffer);
-    return sealContainer(flatbuffer, VG_FLAG_ZSTD | VG_FLAG_CODED_DISTANCES, level);
+    codeDistances(payload.bytes, payload.flatbufferSize);
+    return sealContainer(payload.bytes, VG_FLAG_ZSTD | VG_FLAG_CODED_DISTANCES, level, payload.flatbufferSize);
+}
+
+std::vector<uint8_t> packContainer(std::vector<uint8_t> flatbuffer, bool compress, bool compact, int level) {
+    Payload p;
+    p.flatbufferSize = flatbuffer.size();
+    p.bytes = std::move(flatbuffer);
+    return packContainer(std::move(p), compress, compact, level);
 }
 
 namespace {

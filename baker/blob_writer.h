@@ -32,16 +32,31 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
                                       const Landmarks& landmarks, double& quantisationMaxAbs,
                                       const HubLabels& hubs = HubLabels());
 
-// Header + payload: the flatbuffer as is, or zstd-compressed (compress), optionally with
-// its distances prediction-coded first (compact: distance_coding.h). `flatbuffer` must be
-// a verified Graph buffer (taken by value: a caller done with it moves it in, and coding
-// needs no copy).
+// A blob's payload unpacked: the flatbuffer (its first flatbufferSize bytes), then, with
+// hub labels, the label tables (schema/vorogeo_container.h: they lie outside the
+// flatbuffer, whose offsets end at 2 GiB).
+struct Payload {
+    std::vector<uint8_t> bytes;
+    uint64_t flatbufferSize = 0;
+};
+
+// The payload of a flatbuffer that buildGraphBuffer wrote with `hubs` (the flatbuffer
+// alone when `hubs` is empty).
+Payload withLabelTables(std::vector<uint8_t> flatbuffer, const HubLabels& hubs);
+
+// Header + payload: the payload as is, or zstd-compressed (compress), optionally with its
+// distances and label tables prediction-coded first (compact: distance_coding.h). The
+// flatbuffer must be a verified Graph buffer (taken by value: a caller done with it moves
+// it in, and coding needs no copy). The second form takes a flatbuffer without labels.
+std::vector<uint8_t> packContainer(Payload payload, bool compress, bool compact, int level);
 std::vector<uint8_t> packContainer(std::vector<uint8_t> flatbuffer, bool compress, bool compact, int level);
 
 // Header + payload for any bytes, with the given container flags (VG_FLAG_ZSTD compresses
 // them; VG_FLAG_CODED_DISTANCES only says they are coded): what packContainer uses, and
-// how the fuzzers seal mutated flatbuffers.
-std::vector<uint8_t> sealContainer(const std::vector<uint8_t>& flatbuffer, uint32_t flags, int level);
+// how the fuzzers seal mutated flatbuffers. The flatbuffer is the first flatbufferSize
+// bytes (all of them by default), the rest from the next multiple of 64 bytes the tables.
+std::vector<uint8_t> sealContainer(const std::vector<uint8_t>& payload, uint32_t flags, int level,
+                                   uint64_t flatbufferSize = UINT64_MAX);
 
 // Throws std::runtime_error ("cannot write PATH: reason") if `path` cannot be created, by
 // creating and removing its temporary file: a bake checks this before its long work.

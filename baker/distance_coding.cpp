@@ -1,5 +1,8 @@
 #include "distance_coding.h"
 
+#include <stdexcept>
+
+#include "vorogeo_container.h"
 #include "vorogeo_distance_coding.h"
 #include "vorogeo_label_coding.h"
 #include "vorogeo_topology_coding.h"
@@ -9,19 +12,22 @@ namespace vorogeo {
 
 namespace {
 
-// hub_columns and hub_inner (schema/vorogeo_label_coding.h): each table coded from an
-// uncoded copy, then every array split into byte planes.
-void codeLabels(std::vector<uint8_t>& flatbuffer, const fb::Graph* g) {
+// hub_columns and hub_inner (schema/vorogeo_label_coding.h), where they follow the
+// flatbuffer in the payload: each table coded in place (an entry is read before it is
+// overwritten, and the prediction takes its neighbours from the coder's own row buffers),
+// then every array split into byte planes.
+void codeLabels(std::vector<uint8_t>& payload, uint64_t flatbufferSize, const fb::Graph* g) {
     const auto* tree = g->hub_tree();
     if (!tree || tree->size() == 0) return;
-    auto arrayIn = [&](const flatbuffers::Vector<uint16_t>* v) {
-        return reinterpret_cast<uint16_t*>(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(v->data()) - flatbuffer.data()));
-    };
+    vg_label_tables at;
+    if (!vg_label_tables_at(flatbufferSize, g->hub_columns_count(), g->hub_inner_count(), &at) ||
+        at.payload_size != payload.size())
+        throw std::runtime_error("codeDistances: the payload does not hold the flatbuffer's label tables");
+    uint16_t* columns = reinterpret_cast<uint16_t*>(payload.data() + at.columns_offset);
+    uint16_t* inner = reinterpret_cast<uint16_t*>(payload.data() + at.inner_offset);
     std::vector<int32_t> detours;
     std::vector<unsigned char> planeScratch(2 * VG_LABEL_CHUNK);
 
-    uint16_t* columns = arrayIn(g->hub_columns());
-    const std::vector<uint16_t> columnsPlain(columns, columns + g->hub_columns()->size());
     detours.resize(2 * 16);
     for (uint32_t t = 0; t < tree->size(); ++t) {
         const uint64_t blocks = (uint64_t(tree->Get(t)->hub_count()) + 15) / 16;
@@ -29,13 +35,10 @@ void codeLabels(std::vector<uint8_t>& flatbuffer, const fb::Graph* g) {
         const uint64_t begin = g->hub_column_begin()->Get(t), end = g->hub_column_begin()->Get(t + 1);
         const uint64_t rows = (end - begin) / (16 * blocks);
         for (uint64_t k = 0; k < blocks; ++k)
-            vg_code_label_table(columnsPlain.data(), columns, begin + k * rows * 16, uint32_t(rows), 16, nullptr,
-                                detours.data(), 0);
+            vg_code_label_table(columns, columns, begin + k * rows * 16, uint32_t(rows), 16, nullptr, detours.data(), 0);
     }
-    vg_label_planes(reinterpret_cast<unsigned char*>(columns), columnsPlain.size(), planeScratch.data(), 1);
+    vg_label_planes(reinterpret_cast<unsigned char*>(columns), g->hub_columns_count(), planeScratch.data(), 1);
 
-    uint16_t* inner = arrayIn(g->hub_inner());
-    const std::vector<uint16_t> innerPlain(inner, inner + g->hub_inner()->size());
     const uint32_t* slots = g->slots()->data();
     for (uint32_t p = 0; p < g->first_patches()->size(); ++p) {
         const fb::PatchRecord* patch = g->first_patches()->Get(p);
@@ -44,15 +47,16 @@ void codeLabels(std::vector<uint8_t>& flatbuffer, const fb::Graph* g) {
         const vg_label_sites sites{g->positions()->data(), g->node_vertex()->data(), g->hub_inner_node()->data() + rowBegin,
                                    slots + patch->slot_begin(), 1.0f / g->hub_label_scale()};
         detours.resize(2 * size_t(cols));
-        vg_code_label_table(innerPlain.data(), inner, g->hub_inner_matrix_begin()->Get(p), rows, cols, &sites,
-                            detours.data(), 0);
+        vg_code_label_table(inner, inner, g->hub_inner_matrix_begin()->Get(p), rows, cols, &sites, detours.data(), 0);
     }
-    vg_label_planes(reinterpret_cast<unsigned char*>(inner), innerPlain.size(), planeScratch.data(), 1);
+    vg_label_planes(reinterpret_cast<unsigned char*>(inner), g->hub_inner_count(), planeScratch.data(), 1);
 }
 
 }  // namespace
 
-void codeDistances(std::vector<uint8_t>& flatbuffer) {
+void codeDistances(std::vector<uint8_t>& payload, uint64_t flatbufferSize) {
+    std::vector<uint8_t>& flatbuffer = payload;  // (its first flatbufferSize bytes)
+    if (flatbufferSize > payload.size()) flatbufferSize = payload.size();
     const fb::Graph* g = fb::GetGraph(flatbuffer.data());
     const float* positions = g->positions()->data();
     const uint32_t* slots = g->slots()->data();
@@ -75,7 +79,7 @@ void codeDistances(std::vector<uint8_t>& flatbuffer) {
         const vg_coding_slots s{positions, slots + p->slot_begin(), nodeVertex, p->slot_count()};
         vg_code_first_matrix(firstPlain.data(), first, p->matrix_begin(), p->slot_count(), p->scale(), &s, 0);
     }
-    codeLabels(flatbuffer, g);
+    codeLabels(payload, flatbufferSize, g);
     auto indicesIn = [&](const flatbuffers::Vector<uint32_t>* v) {
         return reinterpret_cast<uint32_t*>(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(v->data()) - flatbuffer.data()));
     };

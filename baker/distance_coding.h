@@ -7,10 +7,13 @@
 
 namespace vorogeo {
 
-// Replaces the quanta of second_distances and first_distances in `flatbuffer` (a verified
-// Graph buffer) by their codes, and the steps of the hub-label tables hub_columns and
-// hub_inner by theirs (schema/vorogeo_label_coding.h), and the mesh topology's indices by
-// their differences (schema/vorogeo_topology_coding.h); nothing else changes.
-void codeDistances(std::vector<uint8_t>& flatbuffer);
+// Replaces the quanta of second_distances and first_distances in the flatbuffer that
+// `payload` begins with (a verified Graph buffer of flatbufferSize bytes, all of it by
+// default) by their codes, the steps of the hub-label tables after it (hub_columns and
+// hub_inner, schema/vorogeo_container.h) by theirs (schema/vorogeo_label_coding.h), and the
+// mesh topology's indices by their differences (schema/vorogeo_topology_coding.h); nothing
+// else changes. Throws std::runtime_error when the payload's size is not that of the
+// flatbuffer's tables.
+void codeDistances(std::vector<uint8_t>& payload, uint64_t flatbufferSize = UINT64_MAX);
 
 }  // namespace vorogeo

@@ -360,10 +360,10 @@ void innerNodesOf(const View& v, const std::vector<uint32_t>& children, std::vec
 // increasing id, so ties settle as with global ids) and f's second-layer node blocks
 // unpacked once, in the order the graph lists each node's patches.
 void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children, const std::vector<uint32_t>& nodes,
-               bool blockRuns, std::vector<double>& values) {
+               bool blockRuns, std::vector<float>& values) {
     const fb::PatchRecord& fr = v.first(f);
     const uint32_t K = fr.slot_count();
-    values.assign(nodes.size() * K, kInf);
+    values.assign(nodes.size() * K, std::numeric_limits<float>::infinity());
     auto localOf = [&](uint32_t n) {
         const auto it = std::lower_bound(nodes.begin(), nodes.end(), n);
         return it != nodes.end() && *it == n ? uint32_t(it - nodes.begin()) : kNo;
@@ -437,7 +437,7 @@ void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children,
             runs.run(o, sourceOf.data() + k, count, 0, 1);
             for (size_t r = 0; r < nodes.size(); ++r) {
                 const double* d = runs.distances(uint32_t(r));
-                for (uint32_t i = 0; i < count; ++i) values[r * K + k + i] = d[i];
+                for (uint32_t i = 0; i < count; ++i) values[r * K + k + i] = float(d[i]);
             }
         }
         return;
@@ -466,7 +466,7 @@ void innerRows(const View& v, uint32_t f, const std::vector<uint32_t>& children,
         }
         for (uint32_t u = dj.next(); u != kNo; u = dj.next())
             for (uint32_t m = rowsBegin[u]; m < rowsBegin[u + 1]; ++m) relaxRow(rows[m], dj.dist[u]);
-        for (size_t r = 0; r < nodes.size(); ++r) values[r * K + k] = dj.dist[r];
+        for (size_t r = 0; r < nodes.size(); ++r) values[r * K + k] = float(dj.dist[r]);
     }
 }
 
@@ -573,7 +573,10 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
     // Inner rows, a first-layer patch per job.
     std::vector<std::vector<uint32_t>> children(v.firstCount), innerNodes(v.firstCount);
     for (uint32_t q = 0; q < v.secondCount; ++q) children[v.second(q).parent()].push_back(q);
-    std::vector<std::vector<double>> innerValues(v.firstCount);
+    // Distances are kept as floats until their steps are known (a double each would take
+    // igea x16's 1.4 billion entries to 11 GB); a float's rounding moves an entry by at
+    // most 0.004 of a step before the step's own rounding.
+    std::vector<std::vector<float>> innerValues(v.firstCount);
     std::atomic<size_t> done{0};
     std::mutex progressMutex;
     const size_t jobs = size_t(v.firstCount) + H;
@@ -620,7 +623,10 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
     // Labels over the first-layer patches of each tree node's subtree (hub_labels.h: why no
     // path outside is needed; a subtree is a range of tree nodes, so a patch is inside when
     // its leaf is in that range): a block of hubs per search (hub_label_runs.h).
-    std::vector<double> labelValue(out.columnBegin[T], kInf);
+    // Per tree node, so that each is freed once it is in steps.
+    std::vector<std::vector<float>> labelValue(T);
+    for (uint32_t t = 0; t < T; ++t)
+        labelValue[t].assign(out.columnBegin[t + 1] - out.columnBegin[t], std::numeric_limits<float>::infinity());
     if (runs == HubLabelRuns::blocks) {
         LabelOverlay overlay;
         std::vector<uint32_t> overlayOf(v.nodes, kNo);
@@ -640,11 +646,10 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
             runs.run(overlay, sources, count, t, subtreeEnd[t]);
             // The block's matrix: a row of kHubBlock lanes per hub of the subtree.
             const uint32_t targetsBegin = out.tree[t].hubBegin, targetsEnd = hubEnd(t);
-            double* matrix = labelValue.data() + out.columnBegin[t] +
-                             uint64_t(blocks[k].second) * kHubBlock * (targetsEnd - targetsBegin);
+            float* matrix = labelValue[t].data() + uint64_t(blocks[k].second) * kHubBlock * (targetsEnd - targetsBegin);
             for (uint32_t r = targetsBegin; r < targetsEnd; ++r) {
                 const double* d = runs.distances(overlayOf[hubNode[r]]);
-                for (uint32_t i = 0; i < count; ++i) matrix[uint64_t(r - targetsBegin) * kHubBlock + i] = d[i];
+                for (uint32_t i = 0; i < count; ++i) matrix[uint64_t(r - targetsBegin) * kHubBlock + i] = float(d[i]);
             }
             tick(count);
         });
@@ -659,9 +664,8 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
             const uint32_t targetsBegin = out.tree[t].hubBegin, targetsEnd = hubEnd(t);
             // x's column: lane x % 16 of its block's matrix, one row per hub of the subtree.
             const uint32_t local = uint32_t(x) - targetsBegin;
-            const uint64_t column = out.columnBegin[t] +
-                                    uint64_t(local / kHubBlock) * kHubBlock * (targetsEnd - targetsBegin) +
-                                    local % kHubBlock;
+            const uint64_t column =
+                uint64_t(local / kHubBlock) * kHubBlock * (targetsEnd - targetsBegin) + local % kHubBlock;
             uint32_t remaining = targetsEnd - targetsBegin;
             dj.begin(v.nodes);
             dj.offer(hubNode[x], 0.0, kNo);
@@ -681,28 +685,38 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
                 }
             }
             for (uint32_t b = targetsBegin; b < targetsEnd; ++b)
-                labelValue[column + uint64_t(b - targetsBegin) * kHubBlock] = dj.dist[hubNode[b]];
+                labelValue[t][column + uint64_t(b - targetsBegin) * kHubBlock] = float(dj.dist[hubNode[b]]);
             tick(1);
         });
     }
 
     // 16-bit steps of one scale for labels and inner rows, so that the runtime adds them
     // as they are; the largest value takes kLargestLabelStep steps.
+    // The steps fill reserved (untouched) memory while the floats are freed a table at a
+    // time, so the stage's peak stays at its floats.
     double largest = 0;
-    for (double d : labelValue)
-        if (std::isfinite(d)) largest = std::max(largest, d);
+    for (const auto& values : labelValue)
+        for (float d : values)
+            if (std::isfinite(d)) largest = std::max(largest, double(d));
     for (const auto& values : innerValues)
-        for (double d : values)
-            if (std::isfinite(d)) largest = std::max(largest, d);
+        for (float d : values)
+            if (std::isfinite(d)) largest = std::max(largest, double(d));
     out.labelScale = largest > 0 ? float(largest / kLargestLabelStep) : 1.0f;
-    out.columns.resize(labelValue.size());
-    for (size_t k = 0; k < labelValue.size(); ++k) out.columns[k] = steps(labelValue[k], out.labelScale);
+    out.columns.reserve(out.columnBegin[T]);
+    for (auto& values : labelValue) {
+        for (float d : values) out.columns.push_back(steps(d, out.labelScale));
+        std::vector<float>().swap(values);
+    }
+    uint64_t innerEntries = 0;
+    for (const auto& values : innerValues) innerEntries += values.size();
+    out.inner.reserve(innerEntries);
     out.innerBegin.assign(1, 0);
     out.innerMatrixBegin.assign(1, 0);
     for (uint32_t f = 0; f < v.firstCount; ++f) {
         out.innerNode.insert(out.innerNode.end(), innerNodes[f].begin(), innerNodes[f].end());
         out.innerBegin.push_back(uint32_t(out.innerNode.size()));
-        for (double d : innerValues[f]) out.inner.push_back(steps(d, out.labelScale));
+        for (float d : innerValues[f]) out.inner.push_back(steps(d, out.labelScale));
+        std::vector<float>().swap(innerValues[f]);
         out.innerMatrixBegin.push_back(out.inner.size());
     }
     computeHubExitLists(flatbuffer, out);

@@ -1,4 +1,4 @@
-/* The vorogeo blob container (format version 8), shared by the baker and the runtime.
+/* The vorogeo blob container (format version 9), shared by the baker and the runtime.
  *
  *   offset  size  field
  *        0     8  magic "VOROGEO\0"
@@ -7,11 +7,19 @@
  *                  matrices (vorogeo_distance_coding.h) and hub-label tables
  *                  (vorogeo_label_coding.h) are prediction-coded; other bits 0
  *       16     8  payload size in bytes (what follows the header)
- *       24     8  flatbuffer size in bytes (payload size when not compressed)
- *       32     8  checksum of the payload bytes (vg_checksum64 below)
- *       40        payload: the flatbuffer of schema/vorogeo.fbs, or a zstd frame holding it
+ *       24     8  flatbuffer size in bytes
+ *       32     8  table bytes: the hub-label tables after the flatbuffer (0 without labels)
+ *       40     8  checksum of the payload bytes (vg_checksum64 below)
+ *       48        payload: the flatbuffer of schema/vorogeo.fbs, then (with hub labels) its
+ *                  tables, or a zstd frame holding both
  *
- * The header is 40 bytes, so an uncompressed flatbuffer starts 8-byte aligned in a mapped
+ * The tables lie outside the flatbuffer because a flatbuffer's 32-bit offsets end at 2 GiB,
+ * which the labels of a 2-million-vertex mesh pass alone. Unpacked, the payload is the
+ * flatbuffer, zeros up to the next multiple of 64 bytes, hub_columns (the flatbuffer's
+ * hub_columns_count 16-bit entries) padded with zeros to a multiple of 64 bytes, then
+ * hub_inner (hub_inner_count entries) padded the same way (vg_label_tables below).
+ *
+ * The header is 48 bytes, so an uncompressed flatbuffer starts 8-byte aligned in a mapped
  * file and can be used in place. Plain C99, no dependencies. */
 #ifndef VOROGEO_CONTAINER_H
 #define VOROGEO_CONTAINER_H
@@ -21,8 +29,8 @@
 #include <string.h>
 
 #define VG_CONTAINER_MAGIC "VOROGEO"
-#define VG_CONTAINER_HEADER_SIZE 40u
-#define VG_FORMAT_VERSION 8u
+#define VG_CONTAINER_HEADER_SIZE 48u
+#define VG_FORMAT_VERSION 9u
 #define VG_FLAG_ZSTD 1u
 #define VG_FLAG_CODED_DISTANCES 2u
 
@@ -77,6 +85,28 @@ static inline uint64_t vg_checksum64(const void* data, size_t size) {
     h *= 0xC4CEB9FE1A85EC53ull;
     h ^= h >> 33;
     return h;
+}
+
+/* Where the hub-label tables lie in an unpacked payload whose flatbuffer takes
+ * flatbuffer_size bytes and names column_count and inner_count entries: byte offsets of
+ * hub_columns and hub_inner from the payload's start, and the table bytes the header
+ * states. 0 (with every output 0) when a count passes 2^60 (no such blob is valid). */
+typedef struct vg_label_tables {
+    uint64_t columns_offset, inner_offset, table_bytes, payload_size;
+} vg_label_tables;
+
+static inline uint64_t vg_align64(uint64_t n) { return (n + 63u) & ~(uint64_t)63u; }
+
+static inline int vg_label_tables_at(uint64_t flatbuffer_size, uint64_t column_count, uint64_t inner_count,
+                                     vg_label_tables* out) {
+    const uint64_t limit = (uint64_t)1 << 60;
+    memset(out, 0, sizeof *out);
+    if (flatbuffer_size > limit || column_count > limit || inner_count > limit) return 0;
+    out->columns_offset = vg_align64(flatbuffer_size);
+    out->inner_offset = out->columns_offset + vg_align64(2 * column_count);
+    out->table_bytes = vg_align64(2 * column_count) + vg_align64(2 * inner_count);
+    out->payload_size = out->table_bytes ? out->columns_offset + out->table_bytes : flatbuffer_size;
+    return 1;
 }
 
 #endif /* VOROGEO_CONTAINER_H */

@@ -19,6 +19,6 @@ inline vorogeo::tools::RuntimeGraph openOrFail(const std::vector<uint8_t>& blob)
 
 // Recomputes the container checksum after the payload was edited on purpose.
 inline void resealChecksum(std::vector<uint8_t>& blob) {
-    vg_store_le64(blob.data() + 32, vg_checksum64(blob.data() + VG_CONTAINER_HEADER_SIZE,
+    vg_store_le64(blob.data() + 40, vg_checksum64(blob.data() + VG_CONTAINER_HEADER_SIZE,
                                                   blob.size() - VG_CONTAINER_HEADER_SIZE));
 }

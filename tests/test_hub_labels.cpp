@@ -578,5 +578,27 @@ TEST_CASE("hub labels: tables that do not add up are refused", "[hub]") {
     CHECK(refused(lists + 2 * size_t(at), second | (second << 16)));        // not increasing
     CHECK(refused(offsetOf(g->hub_exit_patch_begin()->data()) + 4, g->hub_exit_patch_begin()->Get(1) + 1));  // a list too many
     CHECK(refused(offsetOf(g->hub_exit_list_begin()->data()) + 4, 0xFFFFFFF0u));  // a list past the end
+    // The tables after the flatbuffer (format 9): their counts must fill exactly the bytes
+    // the header gives them.
+    const uint64_t columns = g->hub_columns_count();
+    REQUIRE(columns > 0);
+    CHECK(refused(offsetOf(reinterpret_cast<const flatbuffers::Table*>(g)->GetAddressOf(fb::Graph::VT_HUB_COLUMNS_COUNT)), uint32_t(columns + 32)));
+    CHECK(refused(offsetOf(reinterpret_cast<const flatbuffers::Table*>(g)->GetAddressOf(fb::Graph::VT_HUB_COLUMNS_COUNT)), uint32_t(columns - 16)));
+    CHECK(refused(offsetOf(reinterpret_cast<const flatbuffers::Table*>(g)->GetAddressOf(fb::Graph::VT_HUB_INNER_COUNT)), uint32_t(g->hub_inner_count() + 32)));
+    {  // a header that gives the tables 64 bytes more (and a payload that has them)
+        std::vector<uint8_t> longer(blob);
+        longer.resize(longer.size() + 64, 0);
+        vg_store_le64(longer.data() + 16, vg_load_le64(longer.data() + 16) + 64);
+        vg_store_le64(longer.data() + 32, vg_load_le64(longer.data() + 32) + 64);
+        resealChecksum(longer);
+        tools::AlignedBytes copy, memory;
+        copy.resize(longer.size());
+        std::memcpy(copy.data(), longer.data(), longer.size());
+        size_t need = 0;
+        REQUIRE(vg_open_size(copy.data(), longer.size(), &need) == VG_OK);
+        memory.resize(need);
+        const vg_graph* graph = nullptr;
+        CHECK(vg_open(copy.data(), longer.size(), memory.data(), need, &graph) == VG_ERR_CORRUPT_CONTENT);
+    }
     CHECK(refused(lists - 4, g->hub_exit_lists()->size() - 1));             // an entry short
 }

@@ -193,16 +193,23 @@ TEST_CASE("limits: the hub-label stage states its table sizes before computing t
                     BakeLimitError);
     CHECK(progressCalls == 0);
 
-    // The limits on those sizes: the flatbuffer's 2 GiB, and the stage's memory under --max-memory.
+    // The limits on those sizes: the flatbuffer's 2 GiB (the label tables lie outside it,
+    // the inner rows' node ids inside), and the stage's memory under --max-memory.
     CHECK_NOTHROW(checkHubLabelLimits(graph.size(), planned, 4800, BakeOptions(), residentBytes()));
     HubLabelSizes huge;
-    huge.labelEntries = 1ull << 30;  // 2 GiB of steps alone
-    CHECK_THROWS_WITH(checkHubLabelLimits(1 << 20, huge, 2000000, BakeOptions(), 0),
+    huge.labelEntries = 1ull << 30;  // 2 GiB of steps: after the flatbuffer, so within its limit
+    BakeOptions roomy;
+    roomy.maxMemoryBytes = 64ull << 30;
+    CHECK_NOTHROW(checkHubLabelLimits(1 << 20, huge, 2000000, roomy, 0));
+    huge.innerNodes = 1ull << 29;  // 2 GiB of node ids inside the flatbuffer
+    CHECK_THROWS_WITH(checkHubLabelLimits(1 << 20, huge, 2000000, roomy, 0),
                       Catch::Contains("2 GiB limit") && Catch::Contains("without --hub-labels"));
     BakeOptions tight;
     tight.maxMemoryBytes = 1ull << 30;
     HubLabelSizes large;
-    large.labelEntries = 100000000;  // computed as doubles: 800 MB, and steps after
+    large.labelEntries = 200000000;  // computed as floats: 800 MB, and 400 MB of steps after
     CHECK_THROWS_WITH(checkHubLabelLimits(1 << 20, large, 1000000, tight, 1 << 20), Catch::Contains("--max-memory 1.0 GiB"));
+    large.labelEntries = 100000000;  // 600 MB
+    CHECK_NOTHROW(checkHubLabelLimits(1 << 20, large, 1000000, tight, 1 << 20));
     CHECK_NOTHROW(checkHubLabelLimits(1 << 20, planned, 4800, tight, 1 << 20));
 }

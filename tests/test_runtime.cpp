@@ -15,6 +15,7 @@
 #include "bake.h"
 #include "blob_test_helpers.h"
 #include "blob_writer.h"
+#include "distance_coding.h"
 #include "generators.h"
 #include "geodesic_exact.h"
 #include "golden.h"
@@ -24,6 +25,7 @@
 #include "test_helpers.h"
 #include "vorogeo.h"
 #include "vorogeo_container.h"
+#include "vorogeo_generated.h"
 
 using namespace vorogeo;
 using tools::RuntimeGraph;
@@ -548,6 +550,35 @@ TEST_CASE("runtime: corrupt flatbuffers with a valid checksum are refused or ans
     INFO("accepted " << accepted << " rejected " << rejected);
     CHECK(rejected > 0);
     CHECK(accepted > 0);  // distances and positions may change without breaking any index
+}
+
+TEST_CASE("runtime: a coded blob whose decoded arrays share bytes with others is refused", "[runtime][coding]") {
+    // The flatbuffers verifier lets two vectors overlap; a coded blob's topology and
+    // distances are decoded where they lie, so an overlap would rewrite arrays already
+    // checked. Here face_twin is pointed at face_vertices' bytes.
+    const std::vector<uint8_t> blob = bakeBlob(planeGrid(10, 10, 1.0), false, 4);
+    std::vector<uint8_t> flatbuffer(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end());
+    codeDistances(flatbuffer);
+    auto open = [](const std::vector<uint8_t>& b) {
+        tools::AlignedBytes copy, memory;
+        copy.resize(b.size());
+        std::memcpy(copy.data(), b.data(), b.size());
+        size_t need = 0;
+        REQUIRE(vg_open_size(copy.data(), b.size(), &need) == VG_OK);
+        memory.resize(need);
+        const vg_graph* g = nullptr;
+        return vg_open(copy.data(), b.size(), memory.data(), need, &g);
+    };
+    CHECK(open(sealContainer(flatbuffer, VG_FLAG_CODED_DISTANCES, 0)) == VG_OK);
+    const fb::Graph* g = fb::GetGraph(flatbuffer.data());
+    const uint8_t* field = reinterpret_cast<const flatbuffers::Table*>(g)->GetAddressOf(fb::Graph::VT_FACE_TWIN);
+    REQUIRE(field != nullptr);
+    const uint8_t* target = reinterpret_cast<const uint8_t*>(g->face_vertices());
+    REQUIRE(target > field);
+    const uint32_t offset = uint32_t(target - field);
+    std::memcpy(flatbuffer.data() + (field - flatbuffer.data()), &offset, 4);
+    REQUIRE(fb::GetGraph(flatbuffer.data())->face_twin() == fb::GetGraph(flatbuffer.data())->face_vertices());
+    CHECK(open(sealContainer(flatbuffer, VG_FLAG_CODED_DISTANCES, 0)) == VG_ERR_CORRUPT_STRUCTURE);
 }
 
 TEST_CASE("runtime: accuracy against the golden pairs of the shared meshes", "[runtime][shared]") {

@@ -45,7 +45,7 @@ int printBlobInfo(const std::string& path, bool json) {
                     blob.flatbuffer.size(), V ? double(fileBytes) / V : 0.0, V, size(g->node_vertex()), secondPruned,
                     size(g->first_patches()), size(g->second_patches()), size(g->node_first()),
                     (unsigned long long)g->seed(), g->n1(), g->n2(), double(g->delta()), g->margin_rings(),
-                    double(g->bbox_diagonal()), hubs, size(g->hub_columns()), size(g->hub_inner()),
+                    double(g->bbox_diagonal()), hubs, size_t(g->hub_columns_count()), size_t(g->hub_inner_count()),
                     size(g->hub_exit_lists()));
         return 0;
     }
@@ -63,7 +63,7 @@ int printBlobInfo(const std::string& path, bool json) {
                 double(g->delta()), g->margin_rings());
     if (hubs > 0) {
         std::printf("  hub labels      %zu hubs, %zu tree nodes, %zu label entries (blocks padded to 16), %zu inner entries\n", hubs,
-                    size(g->hub_tree()), size(g->hub_columns()), size(g->hub_inner()));
+                    size(g->hub_tree()), size_t(g->hub_columns_count()), size_t(g->hub_inner_count()));
         if (g->hub_exit_lists())
             std::printf("  exit lists      %zu entries in %zu lists (%.1f per list)\n", size(g->hub_exit_lists()),
                         size(g->hub_exit_list_begin()) - 1,

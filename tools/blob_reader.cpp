@@ -18,25 +18,22 @@ namespace {
 // Decodes the hub-label tables in place (schema/vorogeo_label_coding.h), when there are
 // labels, after checking the table ranges the decoder reads (the first-layer slots and the
 // nodes' vertices are checked by decodeDistances before).
-bool decodeLabels(std::vector<uint8_t>& flatbuffer, std::string& error) {
-    const fb::Graph* g = fb::GetGraph(flatbuffer.data());
+bool decodeLabels(BlobContents& blob, std::string& error) {
+    const fb::Graph* g = blob.graph();
     const auto* tree = g->hub_tree();
     if (!tree || tree->size() == 0) return true;
     const uint64_t T = tree->size(), S1 = g->first_patches()->size(), nodes = g->node_vertex()->size();
-    if (!g->hub_column_begin() || !g->hub_columns() || !g->hub_inner_begin() || !g->hub_inner_node() ||
-        !g->hub_inner_matrix_begin() || !g->hub_inner() || g->hub_column_begin()->size() != T + 1 ||
-        g->hub_inner_begin()->size() != S1 + 1 || g->hub_inner_matrix_begin()->size() != S1 + 1) {
+    if (!g->hub_column_begin() || !g->hub_inner_begin() || !g->hub_inner_node() || !g->hub_inner_matrix_begin() ||
+        g->hub_column_begin()->size() != T + 1 || g->hub_inner_begin()->size() != S1 + 1 ||
+        g->hub_inner_matrix_begin()->size() != S1 + 1) {
         error = "coded hub labels without the tables they are decoded into";
         return false;
     }
-    auto valuesOf = [&](const flatbuffers::Vector<uint16_t>* v) {
-        return reinterpret_cast<uint16_t*>(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(v->data()) - flatbuffer.data()));
-    };
     std::vector<int32_t> detours(2 * 65536);
     std::vector<unsigned char> planes(2 * VG_LABEL_CHUNK);
 
-    uint16_t* columns = valuesOf(g->hub_columns());
-    const uint64_t columnCount = g->hub_columns()->size();
+    uint16_t* columns = blob.hubColumns.data();
+    const uint64_t columnCount = blob.hubColumns.size();
     for (uint64_t t = 0; t < T; ++t) {
         const uint64_t begin = g->hub_column_begin()->Get(t), end = g->hub_column_begin()->Get(t + 1);
         const uint64_t blocks = (uint64_t(tree->Get(t)->hub_count()) + 15) / 16;
@@ -56,8 +53,8 @@ bool decodeLabels(std::vector<uint8_t>& flatbuffer, std::string& error) {
             vg_code_label_table(columns, columns, begin + k * rows * 16, uint32_t(rows), 16, nullptr, detours.data(), 1);
     }
 
-    uint16_t* inner = valuesOf(g->hub_inner());
-    const uint64_t innerCount = g->hub_inner()->size(), innerNodes = g->hub_inner_node()->size();
+    uint16_t* inner = blob.hubInner.data();
+    const uint64_t innerCount = blob.hubInner.size(), innerNodes = g->hub_inner_node()->size();
     for (uint64_t p = 0; p < S1; ++p) {
         const uint64_t r0 = g->hub_inner_begin()->Get(uint32_t(p)), r1 = g->hub_inner_begin()->Get(uint32_t(p + 1));
         const uint64_t m0 = g->hub_inner_matrix_begin()->Get(uint32_t(p)), m1 = g->hub_inner_matrix_begin()->Get(uint32_t(p + 1));
@@ -105,7 +102,8 @@ bool decodeTopology(std::vector<uint8_t>& flatbuffer, std::string& error) {
 // Decodes the distances in place (schema/vorogeo_distance_coding.h) after checking that
 // every patch's slots, slot ids and matrix lie inside their arrays; the runtime checks all
 // of that and more in vg_validate, the tools only what the decoder reads.
-bool decodeDistances(std::vector<uint8_t>& flatbuffer, std::string& error) {
+bool decodeDistances(BlobContents& blob, std::string& error) {
+    std::vector<uint8_t>& flatbuffer = blob.flatbuffer;
     const fb::Graph* g = fb::GetGraph(flatbuffer.data());
     if (!g->positions() || !g->slots() || !g->node_vertex() || !g->second_patches() || !g->first_patches() ||
         !g->second_distances() || !g->first_distances()) {
@@ -147,7 +145,7 @@ bool decodeDistances(std::vector<uint8_t>& flatbuffer, std::string& error) {
         return true;
     };
     return decodeLayer(g->second_patches(), g->second_distances(), false) &&
-           decodeLayer(g->first_patches(), g->first_distances(), true) && decodeLabels(flatbuffer, error) &&
+           decodeLayer(g->first_patches(), g->first_distances(), true) && decodeLabels(blob, error) &&
            decodeTopology(flatbuffer, error);
 }
 
@@ -176,41 +174,63 @@ bool unpackBlob(const std::vector<uint8_t>& bytes, BlobContents& out, std::strin
     }
     out.compressed = (flags & VG_FLAG_ZSTD) != 0;
     out.coded = (flags & VG_FLAG_CODED_DISTANCES) != 0;
-    const uint64_t payload = vg_load_le64(h + 16), size = vg_load_le64(h + 24);
+    const uint64_t payload = vg_load_le64(h + 16), size = vg_load_le64(h + 24), tableBytes = vg_load_le64(h + 32);
     if (payload != bytes.size() - VG_CONTAINER_HEADER_SIZE) {
         error = "payload size " + std::to_string(payload) + " does not match the " +
                 std::to_string(bytes.size() - VG_CONTAINER_HEADER_SIZE) + " bytes present (truncated or padded)";
         return false;
     }
-    if (vg_checksum64(h + VG_CONTAINER_HEADER_SIZE, payload) != vg_load_le64(h + 32)) {
+    if (vg_checksum64(h + VG_CONTAINER_HEADER_SIZE, payload) != vg_load_le64(h + 40)) {
         error = "checksum mismatch (corrupted blob)";
-        return false;
-    }
-    if (!out.compressed && size != payload) {
-        error = "uncompressed blob with flatbuffer size different from its payload";
         return false;
     }
     if (size > (uint64_t(1) << 31)) {
         error = "flatbuffer size " + std::to_string(size) + " is larger than 2 GiB";
         return false;
     }
-    out.flatbuffer.resize(size_t(size));
+    if (tableBytes % 64 != 0 || tableBytes > (uint64_t(1) << 48)) {
+        error = "label table size " + std::to_string(tableBytes) + " is not a whole number of 64-byte blocks";
+        return false;
+    }
+    // Unpacked: the flatbuffer, then (with labels) zeros to a multiple of 64 bytes and the tables.
+    const uint64_t unpacked = tableBytes ? vg_align64(size) + tableBytes : size;
+    if (!out.compressed && unpacked != payload) {
+        error = "uncompressed blob whose flatbuffer and tables differ from its payload";
+        return false;
+    }
+    std::vector<uint8_t>& all = out.flatbuffer;  // cut to the flatbuffer below
+    all.resize(size_t(unpacked));
     if (out.compressed) {
-        const size_t n = ZSTD_decompress(out.flatbuffer.data(), out.flatbuffer.size(), h + VG_CONTAINER_HEADER_SIZE, payload);
-        if (ZSTD_isError(n) || n != size) {
+        const size_t n = ZSTD_decompress(all.data(), all.size(), h + VG_CONTAINER_HEADER_SIZE, payload);
+        if (ZSTD_isError(n) || n != unpacked) {
             error = std::string("zstd frame does not decompress to the stated size") +
                     (ZSTD_isError(n) ? std::string(": ") + ZSTD_getErrorName(n) : std::string());
             return false;
         }
-    } else if (size) {
-        std::memcpy(out.flatbuffer.data(), h + VG_CONTAINER_HEADER_SIZE, size_t(size));
+    } else if (unpacked) {
+        std::memcpy(all.data(), h + VG_CONTAINER_HEADER_SIZE, size_t(unpacked));
     }
-    flatbuffers::Verifier verifier(out.flatbuffer.data(), out.flatbuffer.size());
-    if (!fb::VerifyGraphBuffer(verifier)) {
-        error = "flatbuffer fails verification (corrupted or not a vorogeo graph)";
+    {
+        flatbuffers::Verifier verifier(all.data(), size_t(size));
+        if (!fb::VerifyGraphBuffer(verifier)) {
+            error = "flatbuffer fails verification (corrupted or not a vorogeo graph)";
+            return false;
+        }
+    }
+    const fb::Graph* g = fb::GetGraph(all.data());
+    vg_label_tables at;
+    if (!vg_label_tables_at(size, g->hub_columns_count(), g->hub_inner_count(), &at) || at.table_bytes != tableBytes) {
+        error = "the label tables after the flatbuffer take " + std::to_string(tableBytes) +
+                " bytes, not what their entry counts need";
         return false;
     }
-    return !out.coded || decodeDistances(out.flatbuffer, error);
+    const uint16_t* tables = reinterpret_cast<const uint16_t*>(all.data() + at.columns_offset);
+    out.hubColumns.assign(tables, tables + g->hub_columns_count());
+    tables = reinterpret_cast<const uint16_t*>(all.data() + at.inner_offset);
+    out.hubInner.assign(tables, tables + g->hub_inner_count());
+    all.resize(size_t(size));
+    all.shrink_to_fit();
+    return !out.coded || decodeDistances(out, error);
 }
 
 bool readBlobFile(const std::string& path, BlobContents& out, std::string& error) {

@@ -18,6 +18,8 @@ struct BlobContents {
     bool compressed = false;
     bool coded = false;               // the file's distances were prediction-coded
     std::vector<uint8_t> flatbuffer;  // verified
+    // The hub-label tables after the flatbuffer (decoded; empty without labels).
+    std::vector<uint16_t> hubColumns, hubInner;
     const fb::Graph* graph() const { return fb::GetGraph(flatbuffer.data()); }
 };
 

@@ -20,18 +20,22 @@
 
 namespace {
 
-// Everything vg_open needs to know from the 40-byte header.
+// Everything vg_open needs to know from the 48-byte header.
 struct Header {
     bool compressed;
     bool coded;  // distances prediction-coded: decoded in caller memory, never used in place
     uint64_t payloadSize;
     uint64_t flatbufferSize;
+    uint64_t tableBytes;    // the hub-label tables after the flatbuffer
+    uint64_t unpackedSize;  // the flatbuffer, then (with tables) up to 64 bytes of zeros and the tables
     uint64_t checksum;
 };
 
 constexpr size_t kAlign = 64;  // a cache line: the hub-label rows are 32-byte aligned in the buffer
 // flatbuffers offsets are 32-bit: a larger buffer cannot be a valid flatbuffer.
 constexpr uint64_t kMaxFlatbuffer = 0x7FFFFFFFull;
+// Table bytes beyond any memory a process can have: refused before any arithmetic on them.
+constexpr uint64_t kMaxTableBytes = uint64_t(1) << 48;
 
 size_t alignUp(size_t n) { return (n + kAlign - 1) & ~(kAlign - 1); }
 
@@ -50,12 +54,22 @@ vg_status readHeader(const void* blob, size_t blobSize, Header& h) {
 #endif
     h.payloadSize = vg_load_le64(p + 16);
     h.flatbufferSize = vg_load_le64(p + 24);
-    h.checksum = vg_load_le64(p + 32);
+    h.tableBytes = vg_load_le64(p + 32);
+    h.checksum = vg_load_le64(p + 40);
     const uint64_t present = blobSize - VG_CONTAINER_HEADER_SIZE;
     if (h.payloadSize > present) return VG_ERR_TRUNCATED;
     if (h.payloadSize < present) return VG_ERR_CORRUPT_STRUCTURE;  // trailing bytes
     if (h.flatbufferSize == 0 || h.flatbufferSize > kMaxFlatbuffer) return VG_ERR_CORRUPT_STRUCTURE;
-    if (!h.compressed && h.flatbufferSize != h.payloadSize) return VG_ERR_CORRUPT_STRUCTURE;
+    if (h.tableBytes > kMaxTableBytes || h.tableBytes % 64 != 0) return VG_ERR_CORRUPT_STRUCTURE;
+    h.unpackedSize = h.tableBytes ? vg_align64(h.flatbufferSize) + h.tableBytes : h.flatbufferSize;
+    if (h.unpackedSize > SIZE_MAX - 4 * kAlign) return VG_ERR_OUT_OF_MEMORY;  // a 32-bit process
+    if (!h.compressed && h.unpackedSize != h.payloadSize) return VG_ERR_CORRUPT_STRUCTURE;
+#if VG_WITH_ZSTD
+    // The frame states its size too: a header that claims more is refused before anyone
+    // sizes memory by it (the header is outside the checksum).
+    if (h.compressed && ZSTD_getFrameContentSize(p + VG_CONTAINER_HEADER_SIZE, size_t(h.payloadSize)) != h.unpackedSize)
+        return VG_ERR_DECOMPRESSION;
+#endif
     return VG_OK;
 }
 
@@ -67,19 +81,19 @@ size_t decompressionContextSize() {
 #endif
 }
 
-// An uncompressed flatbuffer is used in place when 8-byte aligned; otherwise it is copied.
+// An uncompressed payload is used in place when 8-byte aligned; otherwise it is copied.
 bool usableInPlace(const void* blob) {
     return ((reinterpret_cast<uintptr_t>(blob) + VG_CONTAINER_HEADER_SIZE) & 7u) == 0;
 }
 
-// Coded distances are decoded where they lie, so such a flatbuffer is always copied.
+// Coded distances are decoded where they lie, so such a payload is always copied.
 bool copied(const void* blob, const Header& h) { return !h.compressed && (h.coded || !usableInPlace(blob)); }
 
-// Layout of the caller memory: [graph][flatbuffer copy][zstd context or decoding scratch],
+// Layout of the caller memory: [graph][payload copy][zstd context or decoding scratch],
 // each aligned (the scratch is needed only after decompression, so they share the space).
 size_t memoryNeeded(const void* blob, const Header& h) {
     size_t n = kAlign - 1 + alignUp(sizeof(vg_graph));
-    if (h.compressed || copied(blob, h)) n += alignUp(size_t(h.flatbufferSize));
+    if (h.compressed || copied(blob, h)) n += alignUp(size_t(h.unpackedSize));
     size_t scratch = h.compressed ? decompressionContextSize() : 0;
     if (h.coded && vg::decodeScratchSize() > scratch) scratch = vg::decodeScratchSize();
     if (h.coded && vg::labelDecodeScratchSize() > scratch) scratch = vg::labelDecodeScratchSize();
@@ -118,26 +132,26 @@ extern "C" vg_status vg_open(const void* blob, size_t blob_size, void* memory, s
     vg_graph* graph = reinterpret_cast<vg_graph*>(cursor);
     cursor += alignUp(sizeof(vg_graph));
 
-    const unsigned char* flatbuffer = payload;
+    const unsigned char* unpacked = payload;
     if (h.compressed) {
 #if VG_WITH_ZSTD
         unsigned char* target = cursor;
-        cursor += alignUp(size_t(h.flatbufferSize));
+        cursor += alignUp(size_t(h.unpackedSize));
         ZSTD_DCtx* dctx = ZSTD_initStaticDCtx(cursor, decompressionContextSize());
         if (dctx == nullptr) return VG_ERR_DECOMPRESSION;
-        if (ZSTD_getFrameContentSize(payload, size_t(h.payloadSize)) != h.flatbufferSize)
-            return VG_ERR_DECOMPRESSION;
-        const size_t got = ZSTD_decompressDCtx(dctx, target, size_t(h.flatbufferSize), payload, size_t(h.payloadSize));
-        if (ZSTD_isError(got) || got != h.flatbufferSize) return VG_ERR_DECOMPRESSION;
-        flatbuffer = target;
+        if (ZSTD_getFrameContentSize(payload, size_t(h.payloadSize)) != h.unpackedSize) return VG_ERR_DECOMPRESSION;
+        const size_t got = ZSTD_decompressDCtx(dctx, target, size_t(h.unpackedSize), payload, size_t(h.payloadSize));
+        if (ZSTD_isError(got) || got != h.unpackedSize) return VG_ERR_DECOMPRESSION;
+        unpacked = target;
 #endif
     } else if (copied(blob, h)) {
-        memcpy(cursor, payload, size_t(h.flatbufferSize));
-        flatbuffer = cursor;
-        cursor += alignUp(size_t(h.flatbufferSize));
+        memcpy(cursor, payload, size_t(h.unpackedSize));
+        unpacked = cursor;
+        cursor += alignUp(size_t(h.unpackedSize));
     }
 
-    st = vg::verifyAndBind(flatbuffer, size_t(h.flatbufferSize), *graph, h.coded);
+    const vg::Tables tables{h.tableBytes ? unpacked + vg_align64(h.flatbufferSize) : nullptr, h.tableBytes};
+    st = vg::verifyAndBind(unpacked, size_t(h.flatbufferSize), tables, *graph, h.coded);
     if (st != VG_OK) return st;
     const bool avx2 = vg::cpuHasAvx2();
     if (h.coded) {

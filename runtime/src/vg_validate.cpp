@@ -4,6 +4,7 @@
 // consistent, every back reference (vertex -> slot -> vertex, node -> membership -> node)
 // pointing home, positions and scales finite. One pass over each array.
 #include "vg_validate.h"
+#include "vorogeo_container.h"
 
 #include "vorogeo_topology_coding.h"
 
@@ -177,7 +178,67 @@ bool exitListsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
     return true;
 }
 
-bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
+// A coded blob's distance and topology arrays are decoded where they lie, after (or, for
+// the topology, while) the other arrays are checked. The flatbuffers verifier lets two
+// vectors share bytes, so a crafted blob could make decoding rewrite indices that were
+// already found in range: each decoded array must share no byte with any array the
+// runtime reads. Everything a query reads is listed here.
+bool decodedArraysApart(const vorogeo::fb::Graph* g) {
+    struct Range {
+        const uint8_t* begin;
+        const uint8_t* end;
+    };
+    Range all[40];
+    uint32_t n = 0;
+    auto add = [&](const auto* v) {
+        if (v == nullptr || v->size() == 0) return;
+        const uint8_t* b = reinterpret_cast<const uint8_t*>(v->Data());
+        all[n++] = Range{b, b + uint64_t(v->size()) * sizeof(*v->data())};
+    };
+    // The decoded ones first.
+    add(g->second_distances());
+    add(g->first_distances());
+    add(g->face_vertices());
+    add(g->face_twin());
+    add(g->vertex_halfedge());
+    const uint32_t decoded = n;
+    add(g->positions());
+    add(g->vertex_patch());
+    add(g->vertex_slot());
+    add(g->face_patch());
+    add(g->node_vertex());
+    add(g->node_flags());
+    add(g->node_second_begin());
+    add(g->node_second());
+    add(g->node_first_begin());
+    add(g->node_first());
+    add(g->node_edge_begin());
+    add(g->node_edge());
+    add(g->landmark_vertex());
+    add(g->landmark_scale());
+    add(g->node_landmarks());
+    add(g->second_patches());
+    add(g->first_patches());
+    add(g->slots());
+    add(g->second_edges());
+    add(g->hub_tree());
+    add(g->hub_first_leaf());
+    add(g->node_hub());
+    add(g->hub_column_begin());
+    add(g->hub_inner_begin());
+    add(g->hub_inner_node());
+    add(g->hub_inner_matrix_begin());
+    add(g->hub_block_bounds());
+    add(g->hub_exit_patch_begin());
+    add(g->hub_exit_list_begin());
+    add(g->hub_exit_lists());
+    for (uint32_t i = 0; i < decoded; ++i)
+        for (uint32_t j = 0; j < n; ++j)
+            if (j != i && all[i].begin < all[j].end && all[j].begin < all[i].end) return false;
+    return true;
+}
+
+bool hubsValid(const vorogeo::fb::Graph* g, uint64_t flatbufferSize, const Tables& tables, vg_graph& out) {
     out.hubTreeCount = 0;
     out.hubCount = 0;
     out.hubMaxPath = 0;
@@ -186,10 +247,18 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
     out.hubExitListBegin = nullptr;
     out.hubExitLists = nullptr;
     const uint64_t T = count(g->hub_tree());
-    const bool any = T != 0 || g->hub_first_leaf() || g->node_hub() || g->hub_column_begin() || g->hub_columns() ||
-                     g->hub_inner_begin() || g->hub_inner_node() ||
-                     g->hub_inner_matrix_begin() || g->hub_inner() || g->hub_block_bounds();
+    const uint64_t columnCount = g->hub_columns_count(), innerCount = g->hub_inner_count();
+    const bool any = T != 0 || g->hub_first_leaf() || g->node_hub() || g->hub_column_begin() || columnCount != 0 ||
+                     g->hub_inner_begin() || g->hub_inner_node() || g->hub_inner_matrix_begin() || innerCount != 0 ||
+                     g->hub_block_bounds() || tables.size != 0;
     if (!any) return true;
+    // The tables after the flatbuffer: exactly the bytes their counts take.
+    vg_label_tables at;
+    if (!vg_label_tables_at(flatbufferSize, columnCount, innerCount, &at) || at.table_bytes != tables.size ||
+        tables.bytes == nullptr)
+        return false;
+    const uint16_t* columns = reinterpret_cast<const uint16_t*>(tables.bytes);
+    const uint16_t* inner = reinterpret_cast<const uint16_t*>(tables.bytes + (at.inner_offset - at.columns_offset));
     const uint64_t N = out.nodeCount, S1 = out.firstCount;
     if (T == 0 || T >= kNone || count(g->hub_column_begin()) != T + 1 || count(g->hub_first_leaf()) != S1 ||
         count(g->node_hub()) != N || count(g->hub_inner_begin()) != S1 + 1 ||
@@ -200,8 +269,8 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
     const HubTreeNode* tree = rawStructs<HubTreeNode>(g->hub_tree());
     const uint64_t* columnBegin = raw(g->hub_column_begin());
     const uint64_t* matrixBegin = raw(g->hub_inner_matrix_begin());
-    if (!aligned(tree) || !aligned(columnBegin) || !aligned(matrixBegin) || !aligned(raw(g->hub_columns())) ||
-        !aligned(raw(g->hub_inner())) || !aligned(raw(g->node_hub())) || !aligned(raw(g->hub_first_leaf())) ||
+    if (!aligned(tree) || !aligned(columnBegin) || !aligned(matrixBegin) || !aligned(columns) || !aligned(inner) ||
+        !aligned(raw(g->node_hub())) || !aligned(raw(g->hub_first_leaf())) ||
         !aligned(raw(g->hub_inner_begin())) || !aligned(raw(g->hub_inner_node())))
         return false;
     uint64_t nextHub = 0, maxPath = 0, blocks = 0;
@@ -222,7 +291,7 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
         if (path > maxPath) maxPath = path;
     }
     const uint64_t H = nextHub;
-    if (columnBegin[0] != 0 || columnBegin[T] != count(g->hub_columns())) return false;
+    if (columnBegin[0] != 0 || columnBegin[T] != columnCount) return false;
     for (uint32_t t = 0; t < T; ++t) {  // each block: one row of kHubBlock entries per subtree hub
         const uint64_t rows = uint64_t(hubSubtreeEnd(tree, uint32_t(T), uint32_t(H), t)) - tree[t].hubBegin;
         const uint64_t entries = (uint64_t(tree[t].hubCount) + kHubBlock - 1) / kHubBlock * kHubBlock * rows;
@@ -237,7 +306,7 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
     const uint32_t* innerBegin = raw(g->hub_inner_begin());
     const uint32_t* innerNode = raw(g->hub_inner_node());
     if (innerBegin[0] != 0 || innerBegin[S1] != count(g->hub_inner_node()) || matrixBegin[0] != 0 ||
-        matrixBegin[S1] != count(g->hub_inner()))
+        matrixBegin[S1] != innerCount)
         return false;
     for (uint64_t p = 0; p < S1; ++p) {
         if (innerBegin[p] > innerBegin[p + 1] || innerBegin[p + 1] > count(g->hub_inner_node())) return false;
@@ -254,11 +323,11 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
     out.nodeHub = nodeHub;
     out.hubLabelScale = labelScale;
     out.hubColumnBegin = columnBegin;
-    out.hubColumns = raw(g->hub_columns());
+    out.hubColumns = columns;
     out.hubInnerBegin = innerBegin;
     out.hubInnerNode = innerNode;
     out.hubInnerMatrixBegin = matrixBegin;
-    out.hubInner = raw(g->hub_inner());
+    out.hubInner = inner;
     // Block bounds (optional beside the labels): finite spheres, landmark ranges lo <= hi.
     if (g->hub_block_bounds()) {
         const float* bounds = raw(g->hub_block_bounds());
@@ -277,10 +346,12 @@ bool hubsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
 
 }  // namespace
 
-vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& graph, bool codedTopology) {
+vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, const Tables& tables, vg_graph& graph,
+                        bool codedTopology) {
     flatbuffers::Verifier verifier(flatbuffer, size);
     if (!vorogeo::fb::VerifyGraphBuffer(verifier)) return VG_ERR_CORRUPT_STRUCTURE;
     const vorogeo::fb::Graph* g = vorogeo::fb::GetGraph(flatbuffer);
+    if (codedTopology && !decodedArraysApart(g)) return VG_ERR_CORRUPT_STRUCTURE;
 
     const uint64_t V = g->vertex_count();
     const uint64_t N = count(g->node_vertex());
@@ -415,7 +486,7 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, vg_graph& 
         vg_code_topology(const_cast<uint32_t*>(out.faceVertices), const_cast<uint32_t*>(out.faceTwin),
                          3 * uint64_t(out.faceCount), const_cast<uint32_t*>(out.vertexHalfedge), V, 1);
     if (!facesValid(out)) return VG_ERR_CORRUPT_CONTENT;
-    if (!hubsValid(g, out)) return VG_ERR_CORRUPT_CONTENT;
+    if (!hubsValid(g, size, tables, out)) return VG_ERR_CORRUPT_CONTENT;
 
     graph = out;
     return VG_OK;

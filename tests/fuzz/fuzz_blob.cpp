@@ -2,8 +2,10 @@
 // it is accepted, runs every query kind on it, with vertex numbers and bounds taken from
 // the input too. The first byte chooses how the rest is presented:
 //   0: the whole blob as a file holds it (header, checksum, payload);
-//   1: a flatbuffer, sealed here in an uncompressed container with a matching checksum,
-//      so that mutations reach the verifier and the meaning checks instead of the checksum;
+//   1: a payload (4 bytes little-endian: the flatbuffer's size, then the flatbuffer and
+//      the label tables after it), sealed here in an uncompressed container with a matching
+//      checksum, so that mutations reach the verifier and the meaning checks instead of the
+//      checksum;
 //   2: the same, zstd-compressed;
 //   3: the same, zstd-compressed and flagged as prediction-coded (the runtime decodes the
 //      distance arrays of whatever flatbuffer passes validation);
@@ -147,9 +149,12 @@ void queryEverything(const vg_graph* g, const uint8_t* data, size_t size) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size < 1) return 0;
     const uint8_t mode = data[0] % 5;
-    std::vector<uint8_t> rest(data + 1, data + size);
+    const size_t skip = mode == 0 ? 1 : 5;
+    if (size < skip) return 0;
+    std::vector<uint8_t> rest(data + skip, data + size);
     const uint32_t flags[5] = {0, 0, VG_FLAG_ZSTD, VG_FLAG_ZSTD | VG_FLAG_CODED_DISTANCES, VG_FLAG_CODED_DISTANCES};
-    std::vector<uint8_t> blob = mode == 0 ? rest : vorogeo::sealContainer(rest, flags[mode], 1);
+    const uint64_t flatbufferSize = mode == 0 ? 0 : vg_load_le32(data + 1);
+    std::vector<uint8_t> blob = mode == 0 ? rest : vorogeo::sealContainer(rest, flags[mode], 1, flatbufferSize);
     if (mode != 0 && rest.empty()) return 0;
 
     // 16-byte aligned copy, as a host's mapping or asset buffer would be.

@@ -26,6 +26,21 @@ void writeSeed(const std::filesystem::path& path, uint8_t first, const std::vect
     if (!out) throw std::runtime_error("cannot write " + path.string());
 }
 
+// A payload seed (modes 1-4): the flatbuffer's size, then the payload.
+void writePayloadSeed(const std::filesystem::path& path, uint8_t first, const std::vector<uint8_t>& payload,
+                      uint32_t flatbufferSize) {
+    std::vector<uint8_t> body(4);
+    vg_store_le32(body.data(), flatbufferSize);
+    body.insert(body.end(), payload.begin(), payload.end());
+    writeSeed(path, first, body);
+}
+
+// The payload of an uncompressed blob, and the size of its flatbuffer (from the header).
+std::vector<uint8_t> payloadOf(const std::vector<uint8_t>& blob, uint32_t& flatbufferSize) {
+    flatbufferSize = uint32_t(vg_load_le64(blob.data() + 24));
+    return std::vector<uint8_t>(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end());
+}
+
 std::vector<uint8_t> bakeSmall(const Mesh& mesh, uint32_t n2, bool compact, uint32_t hubPatches = 0) {
     BakeOptions o;
     o.n1 = hubPatches;
@@ -40,15 +55,16 @@ std::vector<uint8_t> bakeSmall(const Mesh& mesh, uint32_t n2, bool compact, uint
 
 void blobSeeds(const std::filesystem::path& dir, const std::string& name, const Mesh& mesh, uint32_t n2) {
     const std::vector<uint8_t> blob = bakeSmall(mesh, n2, false);
-    const std::vector<uint8_t> flatbuffer(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end());
+    uint32_t size = 0;
+    const std::vector<uint8_t> payload = payloadOf(blob, size);
     writeSeed(dir / (name + "-file"), 0, blob);
     writeSeed(dir / (name + "-file-zstd"), 0, bakeSmall(mesh, n2, true));
-    writeSeed(dir / (name + "-flatbuffer"), 1, flatbuffer);
-    writeSeed(dir / (name + "-zstd"), 2, flatbuffer);
-    std::vector<uint8_t> coded = flatbuffer;
-    codeDistances(coded);
-    writeSeed(dir / (name + "-coded-zstd"), 3, coded);
-    writeSeed(dir / (name + "-coded"), 4, coded);
+    writePayloadSeed(dir / (name + "-flatbuffer"), 1, payload, size);
+    writePayloadSeed(dir / (name + "-zstd"), 2, payload, size);
+    std::vector<uint8_t> coded = payload;
+    codeDistances(coded, size);
+    writePayloadSeed(dir / (name + "-coded-zstd"), 3, coded, size);
+    writePayloadSeed(dir / (name + "-coded"), 4, coded, size);
 }
 
 std::vector<uint8_t> meshFile(const Mesh& mesh, MeshFormat format, const std::filesystem::path& scratch) {
@@ -75,12 +91,13 @@ int main(int argc, char** argv) {
         {  // hub labels: several first-layer patches, as a file and as a bare flatbuffer
             const std::vector<uint8_t> blob = bakeSmall(planeGrid(9, 9, 1.0, 0.1, 3), 2, false, 4);
             writeSeed(blobs / "hubs-file", 0, blob);
-            const std::vector<uint8_t> flatbuffer(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end());
-            writeSeed(blobs / "hubs-flatbuffer", 1, flatbuffer);
-            std::vector<uint8_t> coded = flatbuffer;  // distances and label tables coded
-            codeDistances(coded);
-            writeSeed(blobs / "hubs-coded-zstd", 3, coded);
-            writeSeed(blobs / "hubs-coded", 4, coded);
+            uint32_t size = 0;
+            const std::vector<uint8_t> payload = payloadOf(blob, size);
+            writePayloadSeed(blobs / "hubs-flatbuffer", 1, payload, size);
+            std::vector<uint8_t> coded = payload;  // distances and label tables coded
+            codeDistances(coded, size);
+            writePayloadSeed(blobs / "hubs-coded-zstd", 3, coded, size);
+            writePayloadSeed(blobs / "hubs-coded", 4, coded, size);
         }
         Mesh pair = planeGrid(3, 3, 1.0);
         const Mesh other = planeGrid(2, 2, 1.0);

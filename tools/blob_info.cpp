@@ -39,20 +39,23 @@ int printBlobInfo(const std::string& path, bool json) {
                     "\"bytes_per_vertex\":%.2f,\"vertices\":%u,\"nodes\":%zu,\"nodes_pruned_second\":%zu,"
                     "\"first_patches\":%zu,\"second_patches\":%zu,\"first_layer_node_slots\":%zu,"
                     "\"seed\":%llu,\"n1\":%u,\"n2\":%u,\"delta\":%g,\"margin_rings\":%u,\"bbox_diagonal\":%g,"
-                    "\"hubs\":%zu,\"hub_label_entries\":%zu,\"hub_inner_entries\":%zu,\"hub_exit_list_entries\":%zu}\n",
+                    "\"label_table_bytes\":%zu,\"hubs\":%zu,\"hub_label_entries\":%zu,\"hub_inner_entries\":%zu,\"hub_exit_list_entries\":%zu}\n",
                     path.c_str(), blob.formatVersion, blob.compressed ? "true" : "false", blob.coded ? "true" : "false",
                     fileBytes,
                     blob.flatbuffer.size(), V ? double(fileBytes) / V : 0.0, V, size(g->node_vertex()), secondPruned,
                     size(g->first_patches()), size(g->second_patches()), size(g->node_first()),
                     (unsigned long long)g->seed(), g->n1(), g->n2(), double(g->delta()), g->margin_rings(),
-                    double(g->bbox_diagonal()), hubs, size_t(g->hub_columns_count()), size_t(g->hub_inner_count()),
+                    double(g->bbox_diagonal()), 2 * (blob.hubColumns.size() + blob.hubInner.size()), hubs,
+                    size_t(g->hub_columns_count()), size_t(g->hub_inner_count()),
                     size(g->hub_exit_lists()));
         return 0;
     }
-    std::printf("%s: vorogeo blob, format version %u, %s, %zu bytes (%.1f per vertex; flatbuffer %zu bytes)\n",
+    const size_t tableBytes = 2 * (blob.hubColumns.size() + blob.hubInner.size());
+    std::printf("%s: vorogeo blob, format version %u, %s, %zu bytes (%.1f per vertex; flatbuffer %zu bytes%s)\n",
                 path.c_str(), blob.formatVersion,
                 blob.compressed ? (blob.coded ? "zstd, prediction-coded distances" : "zstd") : "uncompressed", fileBytes,
-                V ? double(fileBytes) / V : 0.0, blob.flatbuffer.size());
+                V ? double(fileBytes) / V : 0.0, blob.flatbuffer.size(),
+                tableBytes ? (", label tables " + std::to_string(tableBytes) + " bytes").c_str() : "");
     std::printf("  vertices        %u\n", V);
     std::printf("  patches         %zu first layer, %zu second layer\n", size(g->first_patches()),
                 size(g->second_patches()));

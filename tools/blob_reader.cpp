@@ -189,7 +189,7 @@ bool unpackBlob(const std::vector<uint8_t>& bytes, BlobContents& out, std::strin
         return false;
     }
     if (tableBytes % 64 != 0 || tableBytes > (uint64_t(1) << 48)) {
-        error = "label table size " + std::to_string(tableBytes) + " is not a whole number of 64-byte blocks";
+        error = "label table size " + std::to_string(tableBytes) + " is not a whole number of 64-byte blocks below 256 TiB";
         return false;
     }
     // Unpacked: the flatbuffer, then (with labels) zeros to a multiple of 64 bytes and the tables.

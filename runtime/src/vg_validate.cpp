@@ -188,10 +188,16 @@ bool decodedArraysApart(const vorogeo::fb::Graph* g) {
         const uint8_t* begin;
         const uint8_t* end;
     };
-    Range all[40];
+    constexpr uint32_t kCapacity = 40;
+    Range all[kCapacity];
     uint32_t n = 0;
+    bool full = false;  // more arrays listed than room: refuse (every coded blob, so a test sees it)
     auto add = [&](const auto* v) {
         if (v == nullptr || v->size() == 0) return;
+        if (n == kCapacity) {
+            full = true;
+            return;
+        }
         const uint8_t* b = reinterpret_cast<const uint8_t*>(v->Data());
         all[n++] = Range{b, b + uint64_t(v->size()) * sizeof(*v->data())};
     };
@@ -232,6 +238,7 @@ bool decodedArraysApart(const vorogeo::fb::Graph* g) {
     add(g->hub_exit_patch_begin());
     add(g->hub_exit_list_begin());
     add(g->hub_exit_lists());
+    if (full) return false;
     for (uint32_t i = 0; i < decoded; ++i)
         for (uint32_t j = 0; j < n; ++j)
             if (j != i && all[i].begin < all[j].end && all[j].begin < all[i].end) return false;

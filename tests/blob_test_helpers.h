@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -21,4 +22,17 @@ inline vorogeo::tools::RuntimeGraph openOrFail(const std::vector<uint8_t>& blob)
 inline void resealChecksum(std::vector<uint8_t>& blob) {
     vg_store_le64(blob.data() + 40, vg_checksum64(blob.data() + VG_CONTAINER_HEADER_SIZE,
                                                   blob.size() - VG_CONTAINER_HEADER_SIZE));
+}
+
+// vg_open's status for a blob whose header passes vg_open_size (checked), opened from an
+// aligned copy into memory of the size asked for; the graph is dropped.
+inline vg_status openStatus(const std::vector<uint8_t>& blob) {
+    vorogeo::tools::AlignedBytes copy, memory;
+    copy.resize(blob.size());
+    if (!blob.empty()) std::memcpy(copy.data(), blob.data(), blob.size());
+    size_t need = 0;
+    REQUIRE(vg_open_size(copy.data(), blob.size(), &need) == VG_OK);
+    memory.resize(need);
+    const vg_graph* graph = nullptr;
+    return vg_open(copy.data(), blob.size(), memory.data(), need, &graph);
 }

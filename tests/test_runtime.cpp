@@ -559,17 +559,7 @@ TEST_CASE("runtime: a coded blob whose decoded arrays share bytes with others is
     const std::vector<uint8_t> blob = bakeBlob(planeGrid(10, 10, 1.0), false, 4);
     std::vector<uint8_t> flatbuffer(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end());
     codeDistances(flatbuffer);
-    auto open = [](const std::vector<uint8_t>& b) {
-        tools::AlignedBytes copy, memory;
-        copy.resize(b.size());
-        std::memcpy(copy.data(), b.data(), b.size());
-        size_t need = 0;
-        REQUIRE(vg_open_size(copy.data(), b.size(), &need) == VG_OK);
-        memory.resize(need);
-        const vg_graph* g = nullptr;
-        return vg_open(copy.data(), b.size(), memory.data(), need, &g);
-    };
-    CHECK(open(sealContainer(flatbuffer, VG_FLAG_CODED_DISTANCES, 0)) == VG_OK);
+    CHECK(openStatus(sealContainer(flatbuffer, VG_FLAG_CODED_DISTANCES, 0)) == VG_OK);
     const fb::Graph* g = fb::GetGraph(flatbuffer.data());
     const uint8_t* field = reinterpret_cast<const flatbuffers::Table*>(g)->GetAddressOf(fb::Graph::VT_FACE_TWIN);
     REQUIRE(field != nullptr);
@@ -578,7 +568,7 @@ TEST_CASE("runtime: a coded blob whose decoded arrays share bytes with others is
     const uint32_t offset = uint32_t(target - field);
     std::memcpy(flatbuffer.data() + (field - flatbuffer.data()), &offset, 4);
     REQUIRE(fb::GetGraph(flatbuffer.data())->face_twin() == fb::GetGraph(flatbuffer.data())->face_vertices());
-    CHECK(open(sealContainer(flatbuffer, VG_FLAG_CODED_DISTANCES, 0)) == VG_ERR_CORRUPT_STRUCTURE);
+    CHECK(openStatus(sealContainer(flatbuffer, VG_FLAG_CODED_DISTANCES, 0)) == VG_ERR_CORRUPT_STRUCTURE);
 }
 
 TEST_CASE("runtime: accuracy against the golden pairs of the shared meshes", "[runtime][shared]") {

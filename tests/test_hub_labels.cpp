@@ -140,6 +140,42 @@ TEST_CASE("hub labels: the pruned reads answer like reading every label", "[hub]
     }
 }
 
+TEST_CASE("hub labels: the upper bound meets the hubs at the blocks that can lower it", "[hub]") {
+    // The upper bound's hub-to-hub part reads a block only while its lower bound is below
+    // the best sum so far: the same bound as meeting at every block, and so the same
+    // answers, on the plain and on a pruned graph. Without block bounds every block is read.
+    for (const double delta : {0.0, 0.002}) {
+        const std::vector<uint8_t> blob = delta == 0.0 ? labelledBlob() : bakeLabelled(false, 0, delta);
+        RuntimeGraph g = openOrFail(blob);
+        const vg_graph& graph = *g.graph();
+        REQUIRE(graph.hubBlockBounds != nullptr);
+        vg_graph unbounded = graph;
+        unbounded.hubBlockBounds = nullptr;
+        RuntimeWorkspace ws(g.graph());
+        std::mt19937 rng(29);
+        std::uniform_int_distribution<uint32_t> pick(0, graph.vertexCount - 1);
+        size_t answered = 0, bounded = 0, differ = 0, below = 0;
+        for (int i = 0; i < 3000; ++i) {
+            const uint32_t s = pick(rng), t = pick(rng);
+            float some = 0, every = 0, plain = 0, upperSome = 0, upperEvery = 0, upperPlain = 0;
+            const bool a = vg::hubDistance(graph, *ws.get(), s, t, __builtin_inff(), &some, true, false, false, &upperSome);
+            const bool b = vg::hubDistance(graph, *ws.get(), s, t, __builtin_inff(), &every, true, false, true, &upperEvery);
+            const bool c = vg::hubDistance(unbounded, *ws.get(), s, t, __builtin_inff(), &plain, true, false, false, &upperPlain);
+            REQUIRE(a == b);
+            REQUIRE(a == c);
+            if (!a) continue;
+            ++answered;
+            bounded += upperSome != __builtin_inff();
+            differ += upperSome != upperEvery || upperSome != upperPlain || some != every || some != plain;
+            below += upperSome < some;
+        }
+        CHECK(answered > 1500);
+        CHECK(bounded > answered * 9 / 10);
+        CHECK(differ == 0);
+        CHECK(below == 0);  // an upper bound
+    }
+}
+
 TEST_CASE("hub labels: the meeting inside t's patch answers like the general meeting", "[hub]") {
     // A target inside one second-layer patch (no node) meets s's distances from slot-local
     // arrays and the patch's edge list; any other target through the search labels and the

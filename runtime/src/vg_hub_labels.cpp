@@ -227,7 +227,7 @@ uint32_t blocksOf(const HubTreeNode& node) { return (node.hubCount + kHubBlock -
 HubBlockRef blockRef(const vg_graph& g, const vg_workspace& ws, uint32_t x, uint32_t b) {
     const uint32_t lo = g.hubTree[x].hubBegin, hi = ws.hubSubtreeEnd[x];
     return HubBlockRef{g.hubColumnBegin[x] + uint64_t(b) * kHubBlock * (hi - lo), lo, hi, ws.hubBlocksAbove[x] + b,
-                       __builtin_inff()};
+                       __builtin_inff(), 0.0f, 0.0f};
 }
 
 // The exits (in hub order) with a row in block r: [*begin, *end), found by bisection, so
@@ -605,14 +605,15 @@ VG_AVX2_TARGET float blockBoundToAvx2(const vg_graph& g, const float* block, con
 }
 #endif
 
-// The blocks of the common tree path (down to tree node `lca`) whose hubs may lie on a path
-// from s to t no longer than `upper`: all of them without block bounds or without an upper
-// bound. Returns their number.
+// Every block of the common tree path (from the root down to tree node `lca`, in the order
+// their matrices lie in), with its lower bounds when `bounded` (and the blob has block
+// bounds). Returns their number; *meetCount: how many of the first ones lie at tree node
+// `meetNode` or above, the blocks a hub-to-hub meeting between hubs below it can read.
 uint32_t pathBlocks(const vg_graph& g, vg_workspace& ws, uint32_t lca, const EndpointBounds& bs,
-                    const EndpointBounds& bt, float upper) {
+                    const EndpointBounds& bt, bool bounded, uint32_t meetNode, uint32_t* meetCount) {
     HubBlockRef* out = ws.hubBlocks;
-    uint32_t count = 0;
-    const bool bounded = g.hubBlockBounds != nullptr && upper != __builtin_inff();
+    uint32_t count = 0, belowMeet = 0;
+    bounded = bounded && g.hubBlockBounds != nullptr;
     const uint32_t stride = 4 + 2 * g.landmarkCount;
 #if VG_HUB_AVX2
     LandmarkLanes lanesS, lanesT;
@@ -628,15 +629,15 @@ uint32_t pathBlocks(const vg_graph& g, vg_workspace& ws, uint32_t lca, const End
     const int lanesS = 0, lanesT = 0;
 #endif
     // From the common node up to the root, each node's blocks last to first, reversed at the
-    // end: the matrices are then read in the order they lie in.
+    // end.
     for (uint32_t x = lca; x != kNone; x = g.hubTree[x].parent) {
+        if (x == meetNode) belowMeet = count;
         for (uint32_t b = blocksOf(g.hubTree[x]); b-- > 0;) {
             HubBlockRef r = blockRef(g, ws, x, b);
             if (bounded) {
                 const float* block = g.hubBlockBounds + uint64_t(ws.hubBlockBegin[x] + b) * stride;
-                const float toT = boundTo(block, bt, lanesT) * kBoundShrink;
-                if (boundTo(block, bs, lanesS) * kBoundShrink + toT > upper) continue;
-                r.targetRoom = upper - toT;
+                r.toTargetBound = boundTo(block, bt, lanesT) * kBoundShrink;
+                r.throughBound = boundTo(block, bs, lanesS) * kBoundShrink + r.toTargetBound;
             }
             out[count++] = r;
         }
@@ -646,7 +647,21 @@ uint32_t pathBlocks(const vg_graph& g, vg_workspace& ws, uint32_t lca, const End
         out[i] = out[j - 1];
         out[j - 1] = r;
     }
+    *meetCount = meetNode == kNone ? 0 : count - belowMeet;
     return count;
+}
+
+// Keeps the blocks (of pathBlocks, bounded) whose hubs may lie on a path from s to t no
+// longer than `upper`, each with the room its target side has. Returns their number.
+uint32_t blocksWithin(HubBlockRef* blocks, uint32_t count, float upper) {
+    if (upper == __builtin_inff()) return count;
+    uint32_t kept = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+        if (blocks[i].throughBound > upper) continue;
+        blocks[kept] = blocks[i];
+        blocks[kept++].targetRoom = upper - blocks[i].toTargetBound;
+    }
+    return kept;
 }
 
 // The longest node edge at the nodes of t's second-layer patches (filled per patch at
@@ -744,15 +759,27 @@ uint32_t exitCostsOn(const vg_graph& g, const vg_workspace& ws, uint32_t first, 
 
 // The label distance between two hubs: their rows in every block of the path down to their
 // tree nodes' common ancestor, met.
-uint16_t hubToHub(const vg_graph& g, const vg_workspace& ws, uint32_t a, uint32_t b) {
+// The upper bound's hub-to-hub part: the labels' distance between hubs a and b (their best
+// sum over the hubs of the first `count` blocks, those of their tree nodes' common ancestor
+// and above), in steps, on top of `base`. A block is read only while the path through it
+// could still beat the best sum so far (its lower bound below it; every block when
+// `everyBlock`), the likeliest block first: at igea x16, 56 of ~390 blocks. A sum through
+// a skipped block is at least its lower bound, so the bound is the same as from every
+// block, under the assumption the block pruning makes anyway (kBoundShrink).
+uint16_t hubToHub(const vg_graph& g, const HubBlockRef* blocks, uint32_t count, uint32_t a, uint32_t b,
+                  uint16_t base, bool everyBlock) {
     uint16_t best = kNoStep;
-    for (uint32_t x = commonAncestor(g, treeOfHub(g, a), treeOfHub(g, b)); x != kNone; x = g.hubTree[x].parent) {
-        for (uint32_t k = 0; k < blocksOf(g.hubTree[x]); ++k) {
-            const HubBlockRef r = blockRef(g, ws, x, k);
-            const uint16_t m = meetStepsOn(g, columnRow(g, r, a), columnRow(g, r, b), kHubBlock);
-            best = m < best ? m : best;
-        }
-    }
+    auto bestDistance = [&] { return best == kNoStep ? __builtin_inff() : float(best) * g.hubLabelScale; };
+    auto meet = [&](uint32_t i) {
+        const uint16_t m = saturatingSum(base, meetStepsOn(g, columnRow(g, blocks[i], a), columnRow(g, blocks[i], b), kHubBlock));
+        best = m < best ? m : best;
+    };
+    uint32_t likeliest = 0;
+    for (uint32_t i = 1; i < count; ++i)
+        if (blocks[i].throughBound < blocks[likeliest].throughBound) likeliest = i;
+    if (count > 0) meet(likeliest);
+    for (uint32_t i = 0; i < count; ++i)
+        if (i != likeliest && (everyBlock || blocks[i].throughBound < bestDistance())) meet(i);
     return best;
 }
 
@@ -856,7 +883,7 @@ uint32_t innerRow(const vg_graph& g, uint32_t first, uint32_t node) {
 }
 
 bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance, float* out,
-                 bool prune, bool generalMeeting) {
+                 bool prune, bool generalMeeting, bool meetEveryBlock, float* upperBound) {
     if (g.hubTreeCount == 0 || s == t || g.vertexPatch[s] == kNone || g.vertexPatch[t] == kNone) return false;
     if (t < s) {  // one order for both directions: d(s, t) and d(t, s) are the same number
         const uint32_t x = s;
@@ -898,13 +925,19 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
         hubT = k == kNone ? kNone : g.nodeHub[g.slots[g.first[b.first].slotBegin + k]];
         baseT = k == kNone ? kNoStep : vT[k];
     }
+    // The upper bound: through the likeliest exits and the labels between their hubs.
     float upper = __builtin_inff();
     const float reach = b.hub == kNone ? nodeEdgeReach(g, ws, t) : 0.0f;
-    if (prune && hubS != kNone && hubT != kNone)
-        upper = kUpperSlack * distanceOf(saturatingSum(saturatingSum(baseS, baseT), hubToHub(g, ws, hubS, hubT)));
+    const bool bounded = prune && hubS != kNone && hubT != kNone;
+    uint32_t meetCount = 0;
+    const uint32_t meetNode = bounded ? commonAncestor(g, treeOfHub(g, hubS), treeOfHub(g, hubT)) : kNone;
+    uint32_t blockCount = pathBlocks(g, ws, lca, boundsS, boundsT, bounded, meetNode, &meetCount);
+    if (bounded)
+        upper = kUpperSlack * distanceOf(hubToHub(g, ws.hubBlocks, meetCount, hubS, hubT,
+                                                  saturatingSum(baseS, baseT), meetEveryBlock));
     if (upper != __builtin_inff()) upper += scale + reach;
-
-    const uint32_t blockCount = pathBlocks(g, ws, lca, boundsS, boundsT, upper);
+    if (upperBound) *upperBound = upper;
+    if (g.hubBlockBounds != nullptr) blockCount = blocksWithin(ws.hubBlocks, blockCount, upper);
     const HubBlockRef* blocks = ws.hubBlocks;
     uint16_t* dS = ws.hubSteps;
     HubExit* exitsS = ws.hubExits;

@@ -18,9 +18,14 @@ namespace vg {
 // every label of both patches (the reference the tests compare the pruned reads with).
 // `generalMeeting` meets next to t through the search labels and node edge lists even
 // where t lies inside one second-layer patch, which otherwise takes slot-local arrays and
-// the patch's edge list (the same numbers; the tests compare the two).
+// the patch's edge list (the same numbers; the tests compare the two). `meetEveryBlock`
+// takes the upper bound's hub-to-hub part from every block of the hubs' common tree path
+// rather than only those whose lower bounds could still lower it (the same bound; the
+// tests compare the two); `upperBound`, if given, receives the upper bound the reads were
+// pruned with (+inf: none).
 bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance, float* out,
-                 bool prune = true, bool generalMeeting = false);
+                 bool prune = true, bool generalMeeting = false, bool meetEveryBlock = false,
+                 float* upperBound = nullptr);
 
 // Vertex x's landmark distances as a label query takes them (through its first-layer
 // patch's nodes, +inf for a landmark inside that patch; from its row nodes when x is a hub

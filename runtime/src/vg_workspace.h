@@ -63,6 +63,9 @@ struct HubBlockRef {
     // The most a query's target side may add to the source's distance to one of the
     // block's hubs and still stay within the upper bound (+inf: read the block whatever it is).
     float targetRoom;
+    // Lower bounds of the paths through the block's hubs: from s to t, and from the hubs to
+    // t (0 without block bounds).
+    float throughBound, toTargetBound;
 };
 // A first-layer node through which a query endpoint enters the labels: its hub, its slot
 // in the endpoint's first-layer patch, and the endpoint's distance to it in label steps.

@@ -524,6 +524,39 @@ TEST_CASE("hub labels: the portable and AVX2 block bounds are the same numbers",
     CHECK(positive > compared / 4);
 }
 
+TEST_CASE("hub labels: a block's sphere bound is at most its whole bound", "[hub]") {
+    // The query tests a block's sphere first (a workspace copy, four floats per block) and
+    // reads its landmark ranges only when that leaves room, so the sphere alone must never
+    // bound higher than sphere and landmarks together.
+    for (const double delta : {0.0, 0.002}) {
+        const std::vector<uint8_t> blob = delta == 0.0 ? labelledBlob() : bakeLabelled(false, 0, delta);
+        RuntimeGraph g = openOrFail(blob);
+        REQUIRE(g.graph()->hubBlockBounds != nullptr);
+        RuntimeWorkspace ws(g.graph());
+        const uint32_t blocks = ws.get()->hubBlockBegin[g.graph()->hubTreeCount];
+        std::mt19937 rng(19);
+        std::uniform_int_distribution<uint32_t> pick(0, vg_vertex_count(g.graph()) - 1);
+        size_t compared = 0, positive = 0, tighter = 0, above = 0;
+        for (int i = 0; i < 200; ++i) {
+            const uint32_t x = pick(rng);
+            for (uint32_t b = 0; b < blocks; ++b) {
+                const float whole = vg::hubBlockBound(*g.graph(), *ws.get(), x, b);
+                const float sphere = vg::hubBlockBound(*g.graph(), *ws.get(), x, b, true);
+                REQUIRE((whole < 0.0f) == (sphere < 0.0f));
+                if (whole < 0.0f) continue;
+                ++compared;
+                positive += sphere > 0.0f;
+                tighter += whole > sphere;
+                above += sphere > whole;
+            }
+        }
+        CHECK(compared > 1000);
+        CHECK(positive > compared / 4);  // the spheres alone already bound many blocks
+        CHECK(tighter > 0);              // and the landmarks tighten some
+        CHECK(above == 0);
+    }
+}
+
 TEST_CASE("hub labels: the portable and AVX2 label kernels give the same answers", "[hub]") {
     RuntimeGraph g = openOrFail(labelledBlob());
     if (!g.graph()->avx2) WARN("this CPU has no AVX2: only the portable kernels run");

@@ -227,7 +227,7 @@ uint32_t blocksOf(const HubTreeNode& node) { return (node.hubCount + kHubBlock -
 HubBlockRef blockRef(const vg_graph& g, const vg_workspace& ws, uint32_t x, uint32_t b) {
     const uint32_t lo = g.hubTree[x].hubBegin, hi = ws.hubSubtreeEnd[x];
     return HubBlockRef{g.hubColumnBegin[x] + uint64_t(b) * kHubBlock * (hi - lo), lo, hi, ws.hubBlocksAbove[x] + b,
-                       __builtin_inff(), 0.0f, 0.0f};
+                       __builtin_inff(), 0.0f, 0.0f, kNone};
 }
 
 // The exits (in hub order) with a row in block r: [*begin, *end), found by bisection, so
@@ -605,29 +605,71 @@ VG_AVX2_TARGET float blockBoundToAvx2(const vg_graph& g, const float* block, con
 }
 #endif
 
+// Both endpoints' bounds as the block bounds take them (with AVX2, the landmarks in lanes).
+struct PathBounds {
+    const EndpointBounds* s;
+    const EndpointBounds* t;
+#if VG_HUB_AVX2
+    LandmarkLanes lanesS, lanesT;
+#endif
+};
+
+void preparePathBounds(const vg_graph& g, const EndpointBounds& bs, const EndpointBounds& bt, PathBounds& out) {
+    out.s = &bs;
+    out.t = &bt;
+#if VG_HUB_AVX2
+    if (g.avx2) {
+        landmarkLanes(g, bs, out.lanesS);
+        landmarkLanes(g, bt, out.lanesT);
+    }
+#else
+    (void)g;
+#endif
+}
+
+// A lower bound of d(x, h) for the hubs h of a block from its sphere alone (at most
+// blockBoundTo's: the same sphere term, without the landmark ranges).
+inline float sphereBoundTo(const float* sphere, const float* x) {
+    const float dx = sphere[0] - x[0], dy = sphere[1] - x[1], dz = sphere[2] - x[2];
+    const float d = __builtin_sqrtf(dx * dx + dy * dy + dz * dz) - sphere[3];
+    return d > 0.0f ? d : 0.0f;
+}
+
+// Block r's bounds from its whole record (sphere and landmark ranges), once.
+void tighten(const vg_graph& g, const PathBounds& b, HubBlockRef& r) {
+    if (r.landmarks == kNone) return;
+    const float* block = g.hubBlockBounds + uint64_t(r.landmarks) * (4 + 2 * g.landmarkCount);
+#if VG_HUB_AVX2
+    if (g.avx2) {
+        r.toTargetBound = blockBoundToAvx2(g, block, *b.t, b.lanesT) * kBoundShrink;
+        r.throughBound = blockBoundToAvx2(g, block, *b.s, b.lanesS) * kBoundShrink + r.toTargetBound;
+        r.landmarks = kNone;
+        return;
+    }
+#endif
+    r.toTargetBound = blockBoundTo(g, block, *b.t) * kBoundShrink;
+    r.throughBound = blockBoundTo(g, block, *b.s) * kBoundShrink + r.toTargetBound;
+    r.landmarks = kNone;
+}
+
+// Whether a path from s to t through block r's hubs may be no longer than `upper`: its
+// sphere bound first, its landmark ranges only if that passes.
+inline bool mayPass(const vg_graph& g, const PathBounds& b, HubBlockRef& r, float upper) {
+    if (r.throughBound >= upper) return false;
+    tighten(g, b, r);
+    return r.throughBound < upper;
+}
+
 // Every block of the common tree path (from the root down to tree node `lca`, in the order
-// their matrices lie in), with its lower bounds when `bounded` (and the blob has block
-// bounds). Returns their number; *meetCount: how many of the first ones lie at tree node
-// `meetNode` or above, the blocks a hub-to-hub meeting between hubs below it can read.
-uint32_t pathBlocks(const vg_graph& g, vg_workspace& ws, uint32_t lca, const EndpointBounds& bs,
-                    const EndpointBounds& bt, bool bounded, uint32_t meetNode, uint32_t* meetCount) {
+// their matrices lie in), with lower bounds from their spheres when `bounded` (and the blob
+// has block bounds; tighten() adds the landmark ranges). Returns their number; *meetCount:
+// how many of the first ones lie at tree node `meetNode` or above, the blocks a hub-to-hub
+// meeting between hubs below it can read.
+uint32_t pathBlocks(const vg_graph& g, vg_workspace& ws, uint32_t lca, const PathBounds& bounds, bool bounded,
+                    uint32_t meetNode, uint32_t* meetCount) {
     HubBlockRef* out = ws.hubBlocks;
     uint32_t count = 0, belowMeet = 0;
     bounded = bounded && g.hubBlockBounds != nullptr;
-    const uint32_t stride = 4 + 2 * g.landmarkCount;
-#if VG_HUB_AVX2
-    LandmarkLanes lanesS, lanesT;
-    if (bounded && g.avx2) {
-        landmarkLanes(g, bs, lanesS);
-        landmarkLanes(g, bt, lanesT);
-    }
-    auto boundTo = [&](const float* block, const EndpointBounds& x, const LandmarkLanes& lanes) {
-        return g.avx2 ? blockBoundToAvx2(g, block, x, lanes) : blockBoundTo(g, block, x);
-    };
-#else
-    auto boundTo = [&](const float* block, const EndpointBounds& x, int) { return blockBoundTo(g, block, x); };
-    const int lanesS = 0, lanesT = 0;
-#endif
     // From the common node up to the root, each node's blocks last to first, reversed at the
     // end.
     for (uint32_t x = lca; x != kNone; x = g.hubTree[x].parent) {
@@ -635,9 +677,10 @@ uint32_t pathBlocks(const vg_graph& g, vg_workspace& ws, uint32_t lca, const End
         for (uint32_t b = blocksOf(g.hubTree[x]); b-- > 0;) {
             HubBlockRef r = blockRef(g, ws, x, b);
             if (bounded) {
-                const float* block = g.hubBlockBounds + uint64_t(ws.hubBlockBegin[x] + b) * stride;
-                r.toTargetBound = boundTo(block, bt, lanesT) * kBoundShrink;
-                r.throughBound = boundTo(block, bs, lanesS) * kBoundShrink + r.toTargetBound;
+                const float* sphere = ws.hubBlockSpheres + 4 * uint64_t(ws.hubBlockBegin[x] + b);
+                r.toTargetBound = sphereBoundTo(sphere, bounds.t->position) * kBoundShrink;
+                r.throughBound = sphereBoundTo(sphere, bounds.s->position) * kBoundShrink + r.toTargetBound;
+                r.landmarks = ws.hubBlockBegin[x] + b;
             }
             out[count++] = r;
         }
@@ -653,13 +696,17 @@ uint32_t pathBlocks(const vg_graph& g, vg_workspace& ws, uint32_t lca, const End
 
 // Keeps the blocks (of pathBlocks, bounded) whose hubs may lie on a path from s to t no
 // longer than `upper`, each with the room its target side has. Returns their number.
-uint32_t blocksWithin(HubBlockRef* blocks, uint32_t count, float upper) {
+uint32_t blocksWithin(const vg_graph& g, const PathBounds& bounds, HubBlockRef* blocks, uint32_t count,
+                      float upper) {
     if (upper == __builtin_inff()) return count;
     uint32_t kept = 0;
     for (uint32_t i = 0; i < count; ++i) {
-        if (blocks[i].throughBound > upper) continue;
-        blocks[kept] = blocks[i];
-        blocks[kept++].targetRoom = upper - blocks[i].toTargetBound;
+        HubBlockRef& r = blocks[i];
+        if (r.throughBound > upper) continue;
+        tighten(g, bounds, r);
+        if (r.throughBound > upper) continue;
+        blocks[kept] = r;
+        blocks[kept++].targetRoom = upper - r.toTargetBound;
     }
     return kept;
 }
@@ -757,17 +804,16 @@ uint32_t exitCostsOn(const vg_graph& g, const vg_workspace& ws, uint32_t first, 
     return exitCosts(g, ws, first, v, other, cost);
 }
 
-// The label distance between two hubs: their rows in every block of the path down to their
-// tree nodes' common ancestor, met.
 // The upper bound's hub-to-hub part: the labels' distance between hubs a and b (their best
 // sum over the hubs of the first `count` blocks, those of their tree nodes' common ancestor
 // and above), in steps, on top of `base`. A block is read only while the path through it
-// could still beat the best sum so far (its lower bound below it; every block when
-// `everyBlock`), the likeliest block first: at igea x16, 56 of ~390 blocks. A sum through
-// a skipped block is at least its lower bound, so the bound is the same as from every
-// block, under the assumption the block pruning makes anyway (kBoundShrink).
-uint16_t hubToHub(const vg_graph& g, const HubBlockRef* blocks, uint32_t count, uint32_t a, uint32_t b,
-                  uint16_t base, bool everyBlock) {
+// could still beat the best sum so far (its lower bounds below it, the sphere's first;
+// every block when `everyBlock`), the likeliest block by its sphere first: at igea x16, 56
+// of ~390 blocks. A sum through a skipped block is at least its lower bound, so the bound
+// is the same as from every block, under the assumption the block pruning makes anyway
+// (kBoundShrink).
+uint16_t hubToHub(const vg_graph& g, const PathBounds& bounds, HubBlockRef* blocks, uint32_t count, uint32_t a,
+                  uint32_t b, uint16_t base, bool everyBlock) {
     uint16_t best = kNoStep;
     auto bestDistance = [&] { return best == kNoStep ? __builtin_inff() : float(best) * g.hubLabelScale; };
     auto meet = [&](uint32_t i) {
@@ -779,8 +825,29 @@ uint16_t hubToHub(const vg_graph& g, const HubBlockRef* blocks, uint32_t count, 
         if (blocks[i].throughBound < blocks[likeliest].throughBound) likeliest = i;
     if (count > 0) meet(likeliest);
     for (uint32_t i = 0; i < count; ++i)
-        if (i != likeliest && (everyBlock || blocks[i].throughBound < bestDistance())) meet(i);
+        if (i != likeliest && (everyBlock || mayPass(g, bounds, blocks[i], bestDistance()))) meet(i);
     return best;
+}
+
+// The upper bound again once s's distances to the hubs of the kept blocks are known (d):
+// through t's likeliest exit (hub hubT, baseT steps from t) and the best of those hubs,
+// which replaces hubS by every exit of s. If that is lower, t's side reads against it (its
+// exits and each block's room). `extra`: what the upper bound adds to a path's length.
+float tighterUpper(const vg_graph& g, vg_workspace& ws, uint32_t blockCount, const uint16_t* d, uint32_t hubT,
+                   uint16_t baseT, float extra, float upper) {
+    uint16_t best = kNoStep;
+    for (uint32_t i = 0; i < blockCount; ++i) {
+        const HubBlockRef& r = ws.hubBlocks[i];
+        if (!inBlock(r, hubT)) continue;
+        const uint16_t m = meetStepsOn(g, d + uint64_t(i) * kHubBlock, columnRow(g, r, hubT), kHubBlock);
+        best = m < best ? m : best;
+    }
+    best = saturatingSum(best, baseT);
+    if (best == kNoStep) return upper;
+    const float tighter = kUpperSlack * float(best) * g.hubLabelScale + extra;
+    if (!(tighter < upper)) return upper;
+    for (uint32_t i = 0; i < blockCount; ++i) ws.hubBlocks[i].targetRoom = tighter - ws.hubBlocks[i].toTargetBound;
+    return tighter;
 }
 
 // The unfolded crossing of node edge (v, x) next to t, both ends met (f: from s, b: to t),
@@ -853,10 +920,11 @@ float hubEndpointLandmarks(const vg_graph& g, vg_workspace& ws, uint32_t x, floa
     return b.slack;
 }
 
-float hubBlockBound(const vg_graph& g, vg_workspace& ws, uint32_t x, uint32_t block) {
+float hubBlockBound(const vg_graph& g, vg_workspace& ws, uint32_t x, uint32_t block, bool sphereOnly) {
     Side side;
     if (g.hubTreeCount == 0 || g.hubBlockBounds == nullptr || g.vertexPatch[x] == kNone || !sideOf(g, x, side))
         return -1.0f;
+    if (sphereOnly) return sphereBoundTo(ws.hubBlockSpheres + 4 * uint64_t(block), g.positions + 3 * uint64_t(x));
     if (side.hub == kNone) innerSteps(g, ws, x, side, ws.hubSlotSteps);
     EndpointBounds b;
     endpointBounds(g, ws, x, side, ws.hubSlotSteps, b);
@@ -931,13 +999,16 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
     const bool bounded = prune && hubS != kNone && hubT != kNone;
     uint32_t meetCount = 0;
     const uint32_t meetNode = bounded ? commonAncestor(g, treeOfHub(g, hubS), treeOfHub(g, hubT)) : kNone;
-    uint32_t blockCount = pathBlocks(g, ws, lca, boundsS, boundsT, bounded, meetNode, &meetCount);
+    PathBounds pathBounds;
+    if (bounded) preparePathBounds(g, boundsS, boundsT, pathBounds);
+    uint32_t blockCount = pathBlocks(g, ws, lca, pathBounds, bounded, meetNode, &meetCount);
     if (bounded)
-        upper = kUpperSlack * distanceOf(hubToHub(g, ws.hubBlocks, meetCount, hubS, hubT,
+        upper = kUpperSlack * distanceOf(hubToHub(g, pathBounds, ws.hubBlocks, meetCount, hubS, hubT,
                                                   saturatingSum(baseS, baseT), meetEveryBlock));
     if (upper != __builtin_inff()) upper += scale + reach;
     if (upperBound) *upperBound = upper;
-    if (g.hubBlockBounds != nullptr) blockCount = blocksWithin(ws.hubBlocks, blockCount, upper);
+    if (bounded && g.hubBlockBounds != nullptr)
+        blockCount = blocksWithin(g, pathBounds, ws.hubBlocks, blockCount, upper);
     const HubBlockRef* blocks = ws.hubBlocks;
     uint16_t* dS = ws.hubSteps;
     HubExit* exitsS = ws.hubExits;
@@ -945,6 +1016,8 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
     // The exit lists are exact, not bounds: the full reads (the tests' reference) go without.
     const SideRows rowsS = sideRows(g, ws, s, a, vS, costS, upper, prune, exitsS);
     sourceColumnsOn(g, ws, rowsS, blocks, blockCount, dS);
+    if (bounded && hubT != kNone && upper != __builtin_inff())
+        upper = tighterUpper(g, ws, blockCount, dS, hubT, baseT, scale + reach, upper);
     const SideRows rowsT = sideRows(g, ws, t, b, vT, costT, upper, prune, exitsT);
     uint16_t* acc = ws.hubExitSteps;
     targetColumnsOn(g, ws, dS, rowsT, blocks, blockCount, acc);

@@ -36,9 +36,10 @@ float hubEndpointLandmarks(const vg_graph& g, vg_workspace& ws, uint32_t x, floa
 
 // The lower bound a label query takes from vertex x to the hubs of bounded block `block`
 // (0 <= block < the workspace's block count), with the kernels g selects (AVX2 or
-// portable); -1 when the labels do not answer for x or the blob has no block bounds. For
-// the tests.
-float hubBlockBound(const vg_graph& g, vg_workspace& ws, uint32_t x, uint32_t block);
+// portable), or with `sphereOnly` the one it tries first, from the block's sphere alone
+// (the workspace's copy); -1 when the labels do not answer for x or the blob has no block
+// bounds. For the tests.
+float hubBlockBound(const vg_graph& g, vg_workspace& ws, uint32_t x, uint32_t block, bool sphereOnly = false);
 
 // Row of `node` among the inner rows of first-layer patch `first` (binary search of its
 // sorted node list), kNone if absent.

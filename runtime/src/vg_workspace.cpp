@@ -50,6 +50,13 @@ uint64_t largestFirstPatch(const vg_graph& g) {
     return most;
 }
 
+// Blocks of kHubBlock hubs over every tree node (each node's hubs in whole blocks).
+uint64_t hubBlockCount(const vg_graph& g) {
+    uint64_t n = 0;
+    for (uint32_t t = 0; t < g.hubTreeCount; ++t) n += (g.hubTree[t].hubCount + vg::kHubBlock - 1) / vg::kHubBlock;
+    return n;
+}
+
 struct Layout {
     unsigned char* base;  // nullptr while only measuring
     size_t used = 0;
@@ -119,6 +126,7 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.hubTargetSlotSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? largestFirstPatch(g) : 0) + 16);
     o.hubSlotCost = L.take<float>(2 * uint64_t(g.hubTreeCount ? largestFirstPatch(g) + vg::kRecordLanes : 0));
     o.hubBlockBegin = L.take<uint32_t>(uint64_t(g.hubTreeCount) + 1);
+    o.hubBlockSpheres = L.take<float>(g.hubBlockBounds ? 4 * hubBlockCount(g) : 0);
     o.hubSlotRecordBegin = L.take<uint32_t>(g.hubTreeCount ? uint64_t(g.firstCount) + 1 : 0);
     // Each patch's candidates start a group of kRecordLanes (padded with kNone slots).
     const uint64_t candidates = g.hubTreeCount ? firstSlotCount(g) + uint64_t(g.firstCount) * vg::kRecordLanes : 0;
@@ -165,6 +173,15 @@ void fillNodeRecords(const vg_graph& g, float* records) {
 }
 
 // The hub blocks come per tree node in tree order; a query finds a node's first by this.
+// Each block's sphere (its first four bound fields) side by side, so that a query's first
+// bounds of a tree path's blocks are a few cache lines.
+void fillHubBlockSpheres(const vg_graph& g, float* spheres) {
+    if (g.hubBlockBounds == nullptr) return;
+    const uint64_t stride = 4 + 2 * uint64_t(g.landmarkCount), blocks = hubBlockCount(g);
+    for (uint64_t b = 0; b < blocks; ++b)
+        for (uint32_t k = 0; k < 4; ++k) spheres[4 * b + k] = g.hubBlockBounds[b * stride + k];
+}
+
 void fillHubBlockBegin(const vg_graph& g, uint32_t* begin) {
     if (g.hubTreeCount == 0) return;
     begin[0] = 0;
@@ -268,6 +285,7 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
     clearStamps(*ws);
     fillNodeRecords(*graph, ws->nodeRecords);
     fillHubBlockBegin(*graph, ws->hubBlockBegin);
+    fillHubBlockSpheres(*graph, ws->hubBlockSpheres);
     for (uint32_t t = 0; t < graph->hubTreeCount; ++t) {
         ws->hubSubtreeEnd[t] = vg::hubSubtreeEnd(graph->hubTree, graph->hubTreeCount, graph->hubCount, t);
         const uint32_t parent = graph->hubTree[t].parent;  // preorder: filled before t

@@ -64,8 +64,10 @@ struct HubBlockRef {
     // block's hubs and still stay within the upper bound (+inf: read the block whatever it is).
     float targetRoom;
     // Lower bounds of the paths through the block's hubs: from s to t, and from the hubs to
-    // t (0 without block bounds).
+    // t (0 without block bounds); from the block's sphere alone until `landmarks` is kNone,
+    // else its bounds record to tighten them with its landmark ranges.
     float throughBound, toTargetBound;
+    uint32_t landmarks;
 };
 // A first-layer node through which a query endpoint enters the labels: its hub, its slot
 // in the endpoint's first-layer patch, and the endpoint's distance to it in label steps.
@@ -245,6 +247,8 @@ struct vg_workspace {
     float* hubSlotCost;            // ... both endpoints' lower bounds through each (per side a patch
                                    //     padded to a whole group of kRecordLanes),
     uint32_t* hubBlockBegin;       // ... per tree node its first block (T + 1, filled at init),
+    float* hubBlockSpheres;        // ... per block its bounding sphere (centre, radius; filled at
+                                   //     init from the block bounds, which hold them 112 bytes apart),
     uint32_t* hubSlotRecordBegin;  // ... per first-layer patch (+ 1) its first exit candidate,
     uint32_t* hubSlotOrder;        // ... per patch its slots that are hubs, in hub order (kNone pads),
     float* hubSlotRecords;         // ... and their nodes' records by groups of kRecordLanes

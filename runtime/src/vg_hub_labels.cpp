@@ -808,8 +808,8 @@ uint32_t exitCostsOn(const vg_graph& g, const vg_workspace& ws, uint32_t first, 
 // sum over the hubs of the first `count` blocks, those of their tree nodes' common ancestor
 // and above), in steps, on top of `base`. A block is read only while the path through it
 // could still beat the best sum so far (its lower bounds below it, the sphere's first;
-// every block when `everyBlock`), the likeliest block by its sphere first: at igea x16, 56
-// of ~390 blocks. A sum through a skipped block is at least its lower bound, so the bound
+// every block when `everyBlock`), the likeliest block by its sphere first: on igea x16 a
+// few tens of ~390 blocks. A sum through a skipped block is at least its lower bound, so the bound
 // is the same as from every block, under the assumption the block pruning makes anyway
 // (kBoundShrink).
 uint16_t hubToHub(const vg_graph& g, const PathBounds& bounds, HubBlockRef* blocks, uint32_t count, uint32_t a,

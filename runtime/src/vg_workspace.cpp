@@ -172,7 +172,6 @@ void fillNodeRecords(const vg_graph& g, float* records) {
     }
 }
 
-// The hub blocks come per tree node in tree order; a query finds a node's first by this.
 // Each block's sphere (its first four bound fields) side by side, so that a query's first
 // bounds of a tree path's blocks are a few cache lines.
 void fillHubBlockSpheres(const vg_graph& g, float* spheres) {
@@ -182,6 +181,7 @@ void fillHubBlockSpheres(const vg_graph& g, float* spheres) {
         for (uint32_t k = 0; k < 4; ++k) spheres[4 * b + k] = g.hubBlockBounds[b * stride + k];
 }
 
+// The hub blocks come per tree node in tree order; a query finds a node's first by this.
 void fillHubBlockBegin(const vg_graph& g, uint32_t* begin) {
     if (g.hubTreeCount == 0) return;
     begin[0] = 0;

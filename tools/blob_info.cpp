@@ -34,6 +34,7 @@ int printBlobInfo(const std::string& path, bool json) {
     size_t hubs = 0;
     if (g->hub_tree())
         for (const auto* t : *g->hub_tree()) hubs += t->hub_count();
+    const size_t tableBytes = 2 * (blob.hubColumns.size() + blob.hubInner.size());  // uint16 entries
     if (json) {
         std::printf("{\"blob\":\"%s\",\"format_version\":%u,\"compressed\":%s,\"coded_distances\":%s,\"bytes\":%zu,\"flatbuffer_bytes\":%zu,"
                     "\"bytes_per_vertex\":%.2f,\"vertices\":%u,\"nodes\":%zu,\"nodes_pruned_second\":%zu,"
@@ -45,12 +46,11 @@ int printBlobInfo(const std::string& path, bool json) {
                     blob.flatbuffer.size(), V ? double(fileBytes) / V : 0.0, V, size(g->node_vertex()), secondPruned,
                     size(g->first_patches()), size(g->second_patches()), size(g->node_first()),
                     (unsigned long long)g->seed(), g->n1(), g->n2(), double(g->delta()), g->margin_rings(),
-                    double(g->bbox_diagonal()), 2 * (blob.hubColumns.size() + blob.hubInner.size()), hubs,
+                    double(g->bbox_diagonal()), tableBytes, hubs,
                     size_t(g->hub_columns_count()), size_t(g->hub_inner_count()),
                     size(g->hub_exit_lists()));
         return 0;
     }
-    const size_t tableBytes = 2 * (blob.hubColumns.size() + blob.hubInner.size());
     std::printf("%s: vorogeo blob, format version %u, %s, %zu bytes (%.1f per vertex; flatbuffer %zu bytes%s)\n",
                 path.c_str(), blob.formatVersion,
                 blob.compressed ? (blob.coded ? "zstd, prediction-coded distances" : "zstd") : "uncompressed", fileBytes,

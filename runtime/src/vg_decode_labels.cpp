@@ -156,7 +156,7 @@ void decodeLabels(const vg_graph& g, void* scratch) {
     for (uint32_t t = 0; t < g.hubTreeCount; ++t) {
         const HubTreeNode& n = g.hubTree[t];
         const uint64_t rows = uint64_t(hubSubtreeEnd(g.hubTree, g.hubTreeCount, g.hubCount, t)) - n.hubBegin;
-        const uint64_t blocks = (uint64_t(n.hubCount) + kHubBlock - 1) / kHubBlock;
+        const uint64_t blocks = hubBlocksOf(n);
         for (uint64_t k = 0; k < blocks; ++k)
             decodeLabelTable(columns + g.hubColumnBegin[t] + k * rows * kHubBlock, uint32_t(rows), kHubBlock, nullptr,
                              scratch);

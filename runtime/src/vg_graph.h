@@ -35,6 +35,8 @@ struct Membership {
 struct HubTreeNode {  // vorogeo.fb.HubTreeNode (bake --hub-labels)
     uint32_t parent, hubBegin, hubCount, pathBegin;
 };
+// Blocks of kHubBlock hubs that tree node n's hubs fill (the last one padded).
+inline uint64_t hubBlocksOf(const HubTreeNode& n) { return (uint64_t(n.hubCount) + kHubBlock - 1) / kHubBlock; }
 // End of the hubs of tree node t's subtree, [hubBegin, end) (of T nodes and H hubs): in
 // preorder the subtree ends at the first later node whose parent comes before t.
 inline uint32_t hubSubtreeEnd(const HubTreeNode* tree, uint32_t T, uint32_t H, uint32_t t) {

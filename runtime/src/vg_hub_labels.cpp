@@ -222,7 +222,7 @@ inline bool inBlock(const HubBlockRef& r, uint32_t hub) { return hub >= r.lo && 
 inline const uint16_t* columnRow(const vg_graph& g, const HubBlockRef& r, uint32_t hub) {
     return g.hubColumns + r.base + uint64_t(hub - r.lo) * kHubBlock;
 }
-uint32_t blocksOf(const HubTreeNode& node) { return (node.hubCount + kHubBlock - 1) / kHubBlock; }
+uint32_t blocksOf(const HubTreeNode& node) { return uint32_t(hubBlocksOf(node)); }
 // Block b of tree node x: its matrix has a row per hub of x's subtree.
 HubBlockRef blockRef(const vg_graph& g, const vg_workspace& ws, uint32_t x, uint32_t b) {
     const uint32_t lo = g.hubTree[x].hubBegin, hi = ws.hubSubtreeEnd[x];

@@ -155,7 +155,7 @@ bool exitListsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
         if (p >= out.firstCount) return false;
         uint64_t pathBlocks = 0;  // the blocks of p's tree path (a valid tree: the walk ends)
         for (uint32_t t = out.hubFirstLeaf[p]; t != kNone; t = out.hubTree[t].parent)
-            pathBlocks += (uint64_t(out.hubTree[t].hubCount) + kHubBlock - 1) / kHubBlock;
+            pathBlocks += hubBlocksOf(out.hubTree[t]);
         if (patchBegin[q + 1] < patchBegin[q] || patchBegin[q + 1] - patchBegin[q] != pathBlocks) return false;
     }
     const uint64_t lists64 = count(g->hub_exit_lists());
@@ -283,7 +283,7 @@ bool hubsValid(const vorogeo::fb::Graph* g, uint64_t flatbufferSize, const Table
     uint64_t nextHub = 0, maxPath = 0, blocks = 0;
     for (uint64_t t = 0; t < T; ++t) {
         const HubTreeNode& n = tree[t];
-        blocks += (uint64_t(n.hubCount) + kHubBlock - 1) / kHubBlock;
+        blocks += hubBlocksOf(n);
         if (t == 0 ? n.parent != kNone : n.parent >= t) return false;
         if (t > 0) {  // preorder: the parent is the previous node or one of its ancestors
             uint32_t a = uint32_t(t - 1);
@@ -301,7 +301,7 @@ bool hubsValid(const vorogeo::fb::Graph* g, uint64_t flatbufferSize, const Table
     if (columnBegin[0] != 0 || columnBegin[T] != columnCount) return false;
     for (uint32_t t = 0; t < T; ++t) {  // each block: one row of kHubBlock entries per subtree hub
         const uint64_t rows = uint64_t(hubSubtreeEnd(tree, uint32_t(T), uint32_t(H), t)) - tree[t].hubBegin;
-        const uint64_t entries = (uint64_t(tree[t].hubCount) + kHubBlock - 1) / kHubBlock * kHubBlock * rows;
+        const uint64_t entries = hubBlocksOf(tree[t]) * kHubBlock * rows;
         if (columnBegin[t] > columnBegin[t + 1] || columnBegin[t + 1] - columnBegin[t] != entries) return false;
     }
     const uint32_t* leaf = raw(g->hub_first_leaf());

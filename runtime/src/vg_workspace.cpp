@@ -53,7 +53,7 @@ uint64_t largestFirstPatch(const vg_graph& g) {
 // Blocks of kHubBlock hubs over every tree node (each node's hubs in whole blocks).
 uint64_t hubBlockCount(const vg_graph& g) {
     uint64_t n = 0;
-    for (uint32_t t = 0; t < g.hubTreeCount; ++t) n += (g.hubTree[t].hubCount + vg::kHubBlock - 1) / vg::kHubBlock;
+    for (uint32_t t = 0; t < g.hubTreeCount; ++t) n += vg::hubBlocksOf(g.hubTree[t]);
     return n;
 }
 
@@ -186,7 +186,7 @@ void fillHubBlockBegin(const vg_graph& g, uint32_t* begin) {
     if (g.hubTreeCount == 0) return;
     begin[0] = 0;
     for (uint32_t t = 0; t < g.hubTreeCount; ++t)
-        begin[t + 1] = begin[t] + (g.hubTree[t].hubCount + vg::kHubBlock - 1) / vg::kHubBlock;
+        begin[t + 1] = begin[t] + uint32_t(vg::hubBlocksOf(g.hubTree[t]));
 }
 
 // The hub-label query bounds every first-layer slot of an endpoint's patch that is a hub

@@ -23,6 +23,8 @@
 #include "runtime_graph.h"
 #include "runtime_stats.h"
 #include "test_helpers.h"
+#include "vg_point.h"
+#include "vg_point_to_point.h"
 #include "vorogeo.h"
 #include "vorogeo_container.h"
 #include "vorogeo_generated.h"
@@ -266,31 +268,43 @@ TEST_CASE("runtime: point-to-point agrees with one-to-all, is symmetric and clos
     CHECK(maxRel <= 0.05);
 }
 
-TEST_CASE("runtime: the directed search keeps the better answer of both searches on short pairs", "[runtime]") {
+TEST_CASE("runtime: a short pair keeps the better answer of the directed searches from both ends", "[runtime]") {
     const Mesh mesh = bumpyTorus(60, 30);
     RuntimeGraph g = openOrFail(bumpyBlob());
-    RuntimeWorkspace directed(g), both(g);
-    both.setSearch(VG_SEARCH_BIDIRECTIONAL);
+    RuntimeWorkspace directed(g), single(g);
+    directed.setSearch(VG_SEARCH_DIRECTED);
+    const vg_graph& graph = *g.graph();
     const float diagonal = vg_bbox_diagonal(g.graph());
     std::mt19937 rng(23);
     std::uniform_int_distribution<uint32_t> pick(0, mesh.vertexCount() - 1);
-    size_t shortPairs = 0, lower = 0;
-    for (int i = 0; i < 100000 && shortPairs < 300; ++i) {
+    size_t shortPairs = 0, fromSecondLower = 0, fromFirstLower = 0;
+    for (int i = 0; i < 100000 && shortPairs < 3000; ++i) {
         const uint32_t s = pick(rng), t = pick(rng);
         const Vec3 a = mesh.positions[s], b = mesh.positions[t];
         const double straight = std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z));
         if (s == t || straight >= 0.09 * diagonal) continue;
-        const float d = directed.distance(s, t), e = both.distance(s, t);
+        const vg::Endpoint es = vg::vertexEndpoint(graph, s), et = vg::vertexEndpoint(graph, t);
+        const float first = vg::directedSearch(graph, *single.get(), es, et, INFINITY, false);
+        const float second = vg::directedSearch(graph, *single.get(), es, et, INFINITY, true);
         // Short for the runtime: its lower bound of the distance is under a tenth of the
         // diagonal, which holds when the answer is under 0.09 of it (the answer is within
         // a percent of the geodesic, the bound below it).
-        if (!(e < 0.09f * diagonal)) continue;
+        if (!(first < 0.09f * diagonal)) continue;
         ++shortPairs;
-        CHECK(d <= e);
-        lower += d < e;
+        const float d = directed.distance(s, t);
+        CHECK(d == std::min(first, second));
+        CHECK(d == directed.distance(t, s));
+        // The two searches are one each way, whichever end the caller names first.
+        CHECK(first == vg::directedSearch(graph, *single.get(), et, es, INFINITY, false));
+        fromSecondLower += second < first;
+        fromFirstLower += first < second;
     }
-    INFO("short pairs " << shortPairs << ", answered shorter than the bidirectional search " << lower);
+    INFO("short pairs " << shortPairs << ", the search from the second end lower on " << fromSecondLower
+                        << ", the first on " << fromFirstLower);
     CHECK(shortPairs >= 100);
+    // Each search meets border crossings the other misses: both must be run.
+    CHECK(fromSecondLower > 0);
+    CHECK(fromFirstLower > 0);
 }
 
 TEST_CASE("runtime: one-to-all on a pruned graph (merged-away nodes) stays close to exact", "[runtime]") {

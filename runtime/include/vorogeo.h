@@ -153,7 +153,7 @@ VG_API vg_status vg_workspace_init(const vg_graph* graph, void* memory, size_t m
  *   one first-layer patch) as VG_SEARCH_DIRECTED.
  * VG_SEARCH_DIRECTED: A* from the source with the whole lower bound to the target as its
  *   potential. A short pair (one first-layer patch, or closer than a tenth of the
- *   bounding-box diagonal) is also searched bidirectionally and gets the shorter answer.
+ *   bounding-box diagonal) is also searched from the target and gets the shorter answer.
  * VG_SEARCH_BIDIRECTIONAL: the thesis's bidirectional A* (3.7.1), for comparison.
  * All three answer on the same graph; they differ only in which unfolded border crossings
  * they meet and in how distances are rounded (BENCHMARKS.md has them side by side). The

@@ -27,9 +27,13 @@ struct Meeting {
 
 // Distance from s to t (+inf beyond maxDistance) by the given search (vg_distance.cpp);
 // with `how`, also how it was found, and then exactly that one search runs (the directed
-// mode's second, bidirectional search of a short pair would overwrite the labels `how`
-// refers to).
+// mode's second search of a short pair, from the other end, would overwrite the labels
+// `how` refers to).
 float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float maxDistance,
                    vg_search_mode mode, Meeting* how = nullptr);
+
+// One directed search from the endpoint that comes first in the pair's one order (the
+// same for (s, t) and (t, s)), or with `fromSecond` from the other; no second search.
+float directedSearch(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float maxDistance, bool fromSecond);
 
 }  // namespace vg

@@ -953,18 +953,21 @@ uint32_t innerRow(const vg_graph& g, uint32_t first, uint32_t node) {
 bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance, float* out,
                  bool prune, bool generalMeeting, bool meetEveryBlock, float* upperBound) {
     if (g.hubTreeCount == 0 || s == t || g.vertexPatch[s] == kNone || g.vertexPatch[t] == kNone) return false;
+    Side a, b;
+    if (!sideOf(g, s, a) || !sideOf(g, t, b) || shareFirstPatch(g, a, b)) return false;
     // One order for both directions, so that d(s, t) and d(t, s) are the same number: a
     // node on the source side, whose distances to its patch's exits are its own inner row,
     // rather than on the target side, where the meeting would take the rows of all its
     // patches' nodes; else the smaller vertex id first.
-    const bool sNode = vertexNode(g, s) != kNone, tNode = vertexNode(g, t) != kNone;
+    const bool sNode = a.node != kNone, tNode = b.node != kNone;
     if (sNode != tNode ? tNode : t < s) {
         const uint32_t x = s;
         s = t;
         t = x;
+        const Side y = a;
+        a = b;
+        b = y;
     }
-    Side a, b;
-    if (!sideOf(g, s, a) || !sideOf(g, t, b) || shareFirstPatch(g, a, b)) return false;
     const uint32_t lca = commonAncestor(g, a.tree, b.tree);
     prefetchExitLists(g, ws, s, a, lca, 0);
     prefetchExitLists(g, ws, t, b, lca, 0);

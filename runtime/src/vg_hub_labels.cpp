@@ -440,12 +440,11 @@ SideRows sideRows(const vg_graph& g, const vg_workspace& ws, uint32_t x, const S
         r.listCount = patches <= kMaxSidePatches ? patches : 0;
     }
     const uint32_t begin = ws.hubSlotRecordBegin[side.first], end = ws.hubSlotRecordBegin[side.first + 1];
-    const uint32_t slotBegin = g.first[side.first].slotBegin;
     for (uint32_t c = begin; c < end; ++c) {
         const uint32_t k = ws.hubSlotOrder[c];
         if (k == kNone) continue;  // the group's padding, after the candidates
         const bool usable = v[k] != kNoStep && !(cost[c - begin] > upper);
-        if (usable || r.listCount > 0) exits[r.count++] = HubExit{g.nodeHub[g.slots[slotBegin + k]], k, usable ? v[k] : kNoStep};
+        if (usable || r.listCount > 0) exits[r.count++] = HubExit{ws.hubSlotHub[c], k, usable ? v[k] : kNoStep};
     }
     return r;
 }
@@ -514,12 +513,9 @@ bool landmarksThroughSlots(const vg_graph& g, const vg_workspace& ws, uint32_t f
         out[k] = __builtin_inff();
         for (uint32_t j = 0; j < kRecordLanes; ++j) out[k] = best[k][j] < out[k] ? best[k][j] : out[k];
     }
-    for (uint32_t k = 0; k < g.landmarkCount; ++k) {
-        if (g.vertexPatch[g.landmarkVertex[k]] == kNone) continue;  // used by no face: reached by no path
-        forEachPatchOf(g, g.landmarkVertex[k], [&](uint32_t patch, uint32_t) {
-            if (g.second[patch].parent == first) out[k] = __builtin_inff();
-        });
-    }
+    const uint64_t inside = ws.hubFirstLandmarks[first];
+    for (uint32_t k = 0; k < g.landmarkCount; ++k)
+        if ((inside >> k) & 1u) out[k] = __builtin_inff();
     return true;
 }
 

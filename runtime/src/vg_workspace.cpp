@@ -131,7 +131,9 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     // Each patch's candidates start a group of kRecordLanes (padded with kNone slots).
     const uint64_t candidates = g.hubTreeCount ? firstSlotCount(g) + uint64_t(g.firstCount) * vg::kRecordLanes : 0;
     o.hubSlotOrder = L.take<uint32_t>(candidates);
+    o.hubSlotHub = L.take<uint32_t>(candidates);
     o.hubSlotRecords = L.take<float>(candidates * (3 + uint64_t(g.landmarkCount)));
+    o.hubFirstLandmarks = L.take<uint64_t>(g.hubTreeCount ? g.firstCount : 0);
     o.hubBlocks = L.take<vg::HubBlockRef>(pathBlocks);
     o.hubBlocksAbove = L.take<uint32_t>(g.hubTreeCount);
     // Two blocks' rows of one side: every exit once, or each of its patches' lists.
@@ -195,7 +197,7 @@ void fillHubBlockBegin(const vg_graph& g, uint32_t* begin) {
 // (vg_workspace.h), so that the bounds of a group are one vector step. Each patch starts a
 // group; the slots that pad its last group are kNone.
 void fillHubSlotRecords(const vg_graph& g, const float* nodeRecords, uint32_t* begin, uint32_t* order,
-                        float* slotRecords) {
+                        uint32_t* hubs, float* slotRecords) {
     const uint64_t stride = 3 + uint64_t(g.landmarkCount);
     uint32_t next = 0;
     auto hubOf = [&](uint32_t p, uint32_t k) { return g.nodeHub[g.slots[g.first[p].slotBegin + k]]; };
@@ -211,12 +213,26 @@ void fillHubSlotRecords(const vg_graph& g, const float* nodeRecords, uint32_t* b
         for (; next % vg::kRecordLanes != 0; ++next) order[next] = vg::kNone;
         for (uint32_t i = begin[p]; i < next; ++i) {
             const uint32_t k = order[i];
+            hubs[i] = k == vg::kNone ? vg::kNone : hubOf(p, k);
             for (uint64_t f = 0; f < stride; ++f)
                 vg::slotRecordField(slotRecords, stride, i, f) =
                     k == vg::kNone ? 0.0f : nodeRecords[uint64_t(g.slots[g.first[p].slotBegin + k]) * stride + f];
         }
     }
     begin[g.firstCount] = next;
+}
+
+// A label query's landmark distances through a first-layer patch's nodes hold only for
+// landmarks outside the patch: per first-layer patch the landmarks inside it (on some
+// second-layer patch of its), so that a query tests them with one read instead of
+// following each landmark's patches (a few dependent misses each when the caches are cold).
+void fillHubFirstLandmarks(const vg_graph& g, uint64_t* inside) {
+    for (uint32_t p = 0; p < g.firstCount; ++p) inside[p] = 0;
+    for (uint32_t k = 0; k < g.landmarkCount; ++k) {
+        const uint32_t v = g.landmarkVertex[k];
+        if (g.vertexPatch[v] == vg::kNone) continue;  // used by no face: reached by no path
+        vg::forEachPatchOf(g, v, [&](uint32_t patch, uint32_t) { inside[g.second[patch].parent] |= uint64_t(1) << k; });
+    }
 }
 
 // An unfolded crossing next to a label query's target undercuts a node path by less than
@@ -292,7 +308,9 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
         ws->hubBlocksAbove[t] = parent == vg::kNone ? 0 : ws->hubBlocksAbove[parent] + ws->hubBlockBegin[parent + 1] - ws->hubBlockBegin[parent];
     }
     if (graph->hubTreeCount) {
-        fillHubSlotRecords(*graph, ws->nodeRecords, ws->hubSlotRecordBegin, ws->hubSlotOrder, ws->hubSlotRecords);
+        fillHubSlotRecords(*graph, ws->nodeRecords, ws->hubSlotRecordBegin, ws->hubSlotOrder, ws->hubSlotHub,
+                           ws->hubSlotRecords);
+        fillHubFirstLandmarks(*graph, ws->hubFirstLandmarks);
         fillHubPatchReach(*graph, ws->hubPatchReach);
         fillHubInnerRows(*graph, ws->hubInnerRowOfSlot);
     }

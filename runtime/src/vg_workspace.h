@@ -251,8 +251,11 @@ struct vg_workspace {
                                    //     init from the block bounds, which hold them 112 bytes apart),
     uint32_t* hubSlotRecordBegin;  // ... per first-layer patch (+ 1) its first exit candidate,
     uint32_t* hubSlotOrder;        // ... per patch its slots that are hubs, in hub order (kNone pads),
+    uint32_t* hubSlotHub;          // ... their hub numbers (kNone pads),
     float* hubSlotRecords;         // ... and their nodes' records by groups of kRecordLanes
-                                   //     (slotRecordField; all three filled at init),
+                                   //     (slotRecordField; all four filled at init),
+    uint64_t* hubFirstLandmarks;   // ... per first-layer patch the landmarks inside it, a bit each
+                                   //     (filled at init),
     vg::HubBlockRef* hubBlocks;    // ... and the blocks of the common tree path a query reads,
     uint32_t* hubBlocksAbove;      // ... per tree node the blocks of its proper ancestors (filled at init),
     uint16_t* hubBlockRows;        // ... a side's exits with rows in a block, two halves (this block's

@@ -193,7 +193,8 @@ void fillHubBlockBegin(const vg_graph& g, uint32_t* begin) {
 
 // The hub-label query bounds every first-layer slot of an endpoint's patch that is a hub
 // (its exits): per patch their slot numbers in hub order, so that the label rows are read
-// forward, and their node records side by side in groups of kRecordLanes, field by field
+// forward, their hub numbers (one run to read, not a slot and then a node per exit), and
+// their node records side by side in groups of kRecordLanes, field by field
 // (vg_workspace.h), so that the bounds of a group are one vector step. Each patch starts a
 // group; the slots that pad its last group are kNone.
 void fillHubSlotRecords(const vg_graph& g, const float* nodeRecords, uint32_t* begin, uint32_t* order,
@@ -212,11 +213,10 @@ void fillHubSlotRecords(const vg_graph& g, const float* nodeRecords, uint32_t* b
         }
         for (; next % vg::kRecordLanes != 0; ++next) order[next] = vg::kNone;
         for (uint32_t i = begin[p]; i < next; ++i) {
-            const uint32_t k = order[i];
-            hubs[i] = k == vg::kNone ? vg::kNone : hubOf(p, k);
+            const uint32_t node = order[i] == vg::kNone ? vg::kNone : g.slots[g.first[p].slotBegin + order[i]];
+            hubs[i] = node == vg::kNone ? vg::kNone : g.nodeHub[node];
             for (uint64_t f = 0; f < stride; ++f)
-                vg::slotRecordField(slotRecords, stride, i, f) =
-                    k == vg::kNone ? 0.0f : nodeRecords[uint64_t(g.slots[g.first[p].slotBegin + k]) * stride + f];
+                vg::slotRecordField(slotRecords, stride, i, f) = node == vg::kNone ? 0.0f : nodeRecords[uint64_t(node) * stride + f];
         }
     }
     begin[g.firstCount] = next;

@@ -140,7 +140,8 @@ typedef struct vg_workspace vg_workspace;
 /* Bytes of one workspace for this graph (per-thread scratch of every query). */
 VG_API size_t vg_workspace_size(const vg_graph* graph);
 /* Builds a workspace inside `memory` (any alignment, at least vg_workspace_size bytes);
- * asks for huge pages in it as vg_open does. */
+ * asks for huge pages in it as vg_open does, and writes all of it once, so that no query
+ * pays for a page's first touch. */
 VG_API vg_status vg_workspace_init(const vg_graph* graph, void* memory, size_t memory_size,
                             vg_workspace** out_workspace);
 

@@ -279,11 +279,20 @@ uint32_t beginQuery(vg_workspace& ws) {
 
 }  // namespace vg
 
+namespace {
+
+// Bytes the arrays take from the aligned start of a workspace's memory.
+size_t layoutBytes(const vg_graph& g) {
+    Layout L{nullptr};
+    assign(g, L, nullptr);
+    return L.used;
+}
+
+}  // namespace
+
 extern "C" size_t vg_workspace_size(const vg_graph* graph) {
     if (graph == nullptr) return 0;
-    Layout L{nullptr};
-    assign(*graph, L, nullptr);
-    return L.used + kAlign - 1;
+    return layoutBytes(*graph) + kAlign - 1;  // the start is aligned within the memory given
 }
 
 extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size_t memory_size,
@@ -298,7 +307,7 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
     // Every page written once here, not first by some query: a page's first write is a
     // fault (on a huge page, 2 MB cleared: about 1 ms on igea's test machine), which would
     // land on the first queries of a workspace as latency spikes.
-    memset(base, 0, vg_workspace_size(graph) - kAlign + 1);
+    memset(base, 0, layoutBytes(*graph));
     Layout L{base};
     vg_workspace* ws = reinterpret_cast<vg_workspace*>(base);
     assign(*graph, L, ws);

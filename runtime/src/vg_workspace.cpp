@@ -300,14 +300,15 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
     if (out_workspace == nullptr) return VG_ERR_INVALID_ARGUMENT;
     *out_workspace = nullptr;
     if (graph == nullptr || memory == nullptr) return VG_ERR_INVALID_ARGUMENT;
-    if (memory_size < vg_workspace_size(graph)) return VG_ERR_BUFFER_TOO_SMALL;
+    const size_t used = layoutBytes(*graph);
+    if (memory_size < used + kAlign - 1) return VG_ERR_BUFFER_TOO_SMALL;  // vg_workspace_size
     vg::adviseHugePages(memory, memory_size);  // before the first write (vg_huge_pages.h)
     unsigned char* base = reinterpret_cast<unsigned char*>(
         (reinterpret_cast<uintptr_t>(memory) + kAlign - 1) & ~uintptr_t(kAlign - 1));
     // Every page written once here, not first by some query: a page's first write is a
     // fault (on a huge page, 2 MB cleared: about 1 ms on igea's test machine), which would
     // land on the first queries of a workspace as latency spikes.
-    memset(base, 0, layoutBytes(*graph));
+    memset(base, 0, used);
     Layout L{base};
     vg_workspace* ws = reinterpret_cast<vg_workspace*>(base);
     assign(*graph, L, ws);

@@ -132,6 +132,14 @@ TEST_CASE("vorogeo bench, render and voronoi run on a baked mesh", "[tools][cli]
     CHECK_THAT(r.out, Catch::Contains("\"sssd_p50_us\":") && Catch::Contains("\"msad_p50_ms\":") &&
                           Catch::Contains("\"bidirectional_sssd_p50_us\":"));
     CHECK_THAT(r.out, !Catch::Contains("exact_ssad_p50_ms"));
+    CHECK_THAT(r.out, Catch::Contains("\"turn_pairs\":500,"));  // the default turn
+    r = test::runTool("bench " + mesh + " " + blob + " --pairs 50 --sources 1 --json --runtime-only --turn 7");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("\"turn_pairs\":7,") && Catch::Contains("\"pairs\":50,"));
+    r = test::runTool("bench " + mesh + " " + blob + " --pairs 50 --runtime-only --turn 0");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Catch::Contains("--turn"));
 
     // vorogeo eval with either point-to-point search; the search is named in the report.
     for (const char* search : {"directed", "bidirectional"}) {

@@ -18,11 +18,11 @@ namespace {
 
 const char* kUsage =
     "usage: vorogeo bench MESH BLOB [--pairs N] [--sources M] [--dijkstra-pairs D] [--seed S] [--json]\n"
-    "                    [--runtime-only]\n"
+    "                    [--runtime-only] [--turn T]\n"
     "  Times, in one run on the same random vertices (1 thread):\n"
     "    runtime point-to-point on N pairs (default 1000; the workspace's default mode, hub\n"
     "    labels where the blob has them and else the directed search, and the thesis's\n"
-    "    bidirectional search, taking turns on blocks of 500 pairs) and one-to-all from M\n"
+    "    bidirectional search, taking turns on blocks of T pairs, default 500) and one-to-all from M\n"
     "    sources (default 5); the exact engines one-to-all from the M sources (wavefront)\n"
     "    and point-to-point on the first M pairs (per pair the faster of MMP stopping at\n"
     "    the target and a whole wavefront field); Dijkstra on the edge graph one-to-all\n"
@@ -45,16 +45,16 @@ struct Errors {
 }  // namespace
 
 int runBench(int argc, char** argv) {
-    cli::Args args(argc, argv, {"--pairs", "--sources", "--dijkstra-pairs", "--seed"}, {"--json", "--help", "--repair", "--runtime-only"});
+    cli::Args args(argc, argv, {"--pairs", "--sources", "--dijkstra-pairs", "--seed", "--turn"}, {"--json", "--help", "--repair", "--runtime-only"});
     if (args.flag("--help")) {
         std::printf("%s", kUsage);
         return 0;
     }
     if (args.positional().size() != 2) throw cli::UsageError(std::string("expected MESH and BLOB\n") + kUsage);
     const long long pairCount = args.integer("--pairs", 1000), sourceCount = args.integer("--sources", 5);
-    const long long dijkstraPairs = args.integer("--dijkstra-pairs", 200);
-    if (pairCount < 1 || sourceCount < 1 || dijkstraPairs < 1)
-        throw cli::UsageError("--pairs, --sources and --dijkstra-pairs must be >= 1");
+    const long long dijkstraPairs = args.integer("--dijkstra-pairs", 200), turnPairs = args.integer("--turn", 500);
+    if (pairCount < 1 || sourceCount < 1 || dijkstraPairs < 1 || turnPairs < 1)
+        throw cli::UsageError("--pairs, --sources, --dijkstra-pairs and --turn must be >= 1");
     const uint64_t seed = uint64_t(args.integer("--seed", 1));
 
     Mesh mesh;
@@ -76,14 +76,15 @@ int runBench(int argc, char** argv) {
     std::vector<double> sssdUs, thesisSssdUs, msadMs, exactSsadMs, exactSssdMs, dijkstraSssdUs, dijkstraSsadMs;
     // The two modes take turns on blocks of pairs (which goes first alternates), so that
     // the machine's drift affects both alike while each mode answers a batch of queries
-    // with its own data in the caches. Turns on every pair time each query right after
-    // the other mode's search of the same pair has filled the caches; igea's labels, p50:
-    // 61 us so, 57 us in turns of 50 pairs, 48 us in turns of 500, 44 us alone.
-    constexpr size_t kTurnPairs = 500;
-    for (size_t begin = 0; begin < pairs.size(); begin += kTurnPairs) {
-        const size_t end = std::min(pairs.size(), begin + kTurnPairs);
+    // with its own data in the caches. Shorter turns time more queries right after the
+    // other mode's search has filled the caches with its own data; igea's labels, p50
+    // (session 36, BENCHMARKS.md): 24-25.5 us in turns of 500 pairs, 27-28 us in turns of
+    // 100, 31-34 us in turns of 10, 22 us alone.
+    const size_t turn = size_t(turnPairs);
+    for (size_t begin = 0; begin < pairs.size(); begin += turn) {
+        const size_t end = std::min(pairs.size(), begin + turn);
         for (int k = 0; k < 2; ++k) {
-            const bool directed = (k == 0) == ((begin / kTurnPairs) % 2 == 0);
+            const bool directed = (k == 0) == ((begin / turn) % 2 == 0);
             for (size_t i = begin; i < end; ++i) {
                 Stopwatch w;
                 sink = (directed ? ws : thesisWs).distance(pairs[i].first, pairs[i].second);
@@ -108,10 +109,10 @@ int runBench(int argc, char** argv) {
         (void)sink;
         const double msad = percentile(msadMs, 50);
         if (args.flag("--json"))
-            std::printf("{\"mesh\":\"%s\",\"mode\":\"%s\",\"vertices\":%u,\"blob_bytes\":%zu,\"pairs\":%zu,\"sources\":%zu,"
+            std::printf("{\"mesh\":\"%s\",\"mode\":\"%s\",\"vertices\":%u,\"blob_bytes\":%zu,\"pairs\":%zu,\"turn_pairs\":%zu,\"sources\":%zu,"
                         "\"sssd_p50_us\":%.2f,\"sssd_p99_us\":%.2f,\"bidirectional_sssd_p50_us\":%.2f,"
                         "\"bidirectional_sssd_p99_us\":%.2f,\"msad_p50_ms\":%.3f}\n",
-                        args.positional()[0].c_str(), mode, V, graph.blobBytes(), pairs.size(), sources.size(), sssdP50,
+                        args.positional()[0].c_str(), mode, V, graph.blobBytes(), pairs.size(), turn, sources.size(), sssdP50,
                         sssdP99, thesisP50, thesisP99, msad);
         else
             std::printf("%s: %u vertices, blob %zu bytes; %zu pairs, %zu sources, 1 thread, runtime only\n"
@@ -167,7 +168,7 @@ int runBench(int argc, char** argv) {
     const double exactSssd = percentile(exactSssdMs, 50), dijkstraSssd = percentile(dijkstraSssdUs, 50);
     const double dijkstraSsad = percentile(dijkstraSsadMs, 50);
     if (args.flag("--json")) {
-        std::printf("{\"mesh\":\"%s\",\"mode\":\"%s\",\"vertices\":%u,\"blob_bytes\":%zu,\"pairs\":%zu,\"sources\":%zu,"
+        std::printf("{\"mesh\":\"%s\",\"mode\":\"%s\",\"vertices\":%u,\"blob_bytes\":%zu,\"pairs\":%zu,\"turn_pairs\":%zu,\"sources\":%zu,"
                     "\"sssd_p50_us\":%.2f,\"sssd_p99_us\":%.2f,\"bidirectional_sssd_p50_us\":%.2f,"
                     "\"bidirectional_sssd_p99_us\":%.2f,\"msad_p50_ms\":%.3f,"
                     "\"exact_sssd_p50_ms\":%.3f,\"exact_ssad_p50_ms\":%.3f,"
@@ -176,7 +177,7 @@ int runBench(int argc, char** argv) {
                     "\"speedup_sssd_vs_dijkstra\":%.2f,\"speedup_ssad_vs_dijkstra\":%.2f,"
                     "\"field_mean_rel_error\":%.6e,\"field_max_rel_error\":%.6e,"
                     "\"dijkstra_mean_rel_error\":%.6e,\"dijkstra_max_rel_error\":%.6e}\n",
-                    args.positional()[0].c_str(), mode, V, graph.blobBytes(), pairs.size(), sources.size(), sssdP50,
+                    args.positional()[0].c_str(), mode, V, graph.blobBytes(), pairs.size(), turn, sources.size(), sssdP50,
                     sssdP99, thesisP50, thesisP99, msad, exactSssd, exactSsad, dijkstraSssd, dijkstraSsad, exactSssd * 1e3 / sssdP50,
                     exactSsad / msad, dijkstraSssd / sssdP50, dijkstraSsad / msad, runtimeErr.mean(), runtimeErr.max,
                     dijkstraErr.mean(), dijkstraErr.max);

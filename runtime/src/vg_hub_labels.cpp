@@ -40,29 +40,37 @@ uint16_t meetSteps(const uint16_t* d, const uint16_t* steps, uint32_t n) {
 }
 
 #if VG_HUB_AVX2
+// A row whose length is no multiple of 16 ends with one more vector over its last 16
+// entries, overlapping the one before: taking a minimum twice changes nothing, and the
+// scalar loop it replaces was a quarter of the kernel's work on igea's rows (~310).
+VG_AVX2_TARGET inline void lowerSteps16(uint16_t* d, const uint16_t* steps, __m256i b) {
+    const __m256i x = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(steps));
+    const __m256i y = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(d));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(d), _mm256_min_epu16(y, _mm256_adds_epu16(x, b)));
+}
+
 VG_AVX2_TARGET void lowerStepsAvx2(uint16_t* d, const uint16_t* steps, uint32_t n, uint16_t base) {
+    if (n < 16) return lowerSteps(d, steps, n, base);
     const __m256i b = _mm256_set1_epi16(short(base));
     uint32_t k = 0;
-    for (; k + 16 <= n; k += 16) {
-        const __m256i x = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(steps + k));
-        const __m256i y = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(d + k));
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + k), _mm256_min_epu16(y, _mm256_adds_epu16(x, b)));
-    }
-    lowerSteps(d + k, steps + k, n - k, base);
+    for (; k + 16 <= n; k += 16) lowerSteps16(d + k, steps + k, b);
+    if (k < n) lowerSteps16(d + n - 16, steps + n - 16, b);
+}
+
+VG_AVX2_TARGET void meetSteps16(const uint16_t* d, const uint16_t* steps, __m256i& best) {
+    const __m256i x = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(steps));
+    const __m256i y = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(d));
+    best = _mm256_min_epu16(best, _mm256_adds_epu16(x, y));
 }
 
 VG_AVX2_TARGET uint16_t meetStepsAvx2(const uint16_t* d, const uint16_t* steps, uint32_t n) {
+    if (n < 16) return meetSteps(d, steps, n);
     __m256i best = _mm256_set1_epi16(-1);
     uint32_t k = 0;
-    for (; k + 16 <= n; k += 16) {
-        const __m256i x = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(steps + k));
-        const __m256i y = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(d + k));
-        best = _mm256_min_epu16(best, _mm256_adds_epu16(x, y));
-    }
+    for (; k + 16 <= n; k += 16) meetSteps16(d + k, steps + k, best);
+    if (k < n) meetSteps16(d + n - 16, steps + n - 16, best);
     const __m128i half = _mm_min_epu16(_mm256_castsi256_si128(best), _mm256_extracti128_si256(best, 1));
-    const uint16_t lanes = uint16_t(_mm_cvtsi128_si32(_mm_minpos_epu16(half)));
-    const uint16_t rest = meetSteps(d + k, steps + k, n - k);
-    return lanes < rest ? lanes : rest;
+    return uint16_t(_mm_cvtsi128_si32(_mm_minpos_epu16(half)));
 }
 #endif
 
@@ -205,6 +213,28 @@ uint16_t lanesMinimum(const uint16_t* lanes) {
     uint16_t best = kNoStep;
     for (uint32_t j = 0; j < kHubBlock; ++j) best = lanes[j] < best ? lanes[j] : best;
     return best;
+}
+
+#if VG_HUB_AVX2
+VG_AVX2_TARGET inline uint16_t lanesMinimumAvx2(const uint16_t* lanes) {
+    const __m256i x = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(lanes));
+    return uint16_t(_mm_cvtsi128_si32(_mm_minpos_epu16(_mm_min_epu16(_mm256_castsi256_si128(x), _mm256_extracti128_si256(x, 1)))));
+}
+#endif
+
+// w[slot]: the source's distance to each exit of the target side that the bounds kept, the
+// best over its 16 lanes in acc (one per exit); the others stay as they are.
+void exitDistances(const vg_graph& g, const HubExit* exits, uint32_t count, const uint16_t* acc, uint16_t* w) {
+#if VG_HUB_AVX2
+    if (g.avx2) {
+        for (uint32_t e = 0; e < count; ++e)
+            if (exits[e].steps != kNoStep) w[exits[e].slot] = lanesMinimumAvx2(acc + uint64_t(e) * kHubBlock);
+        return;
+    }
+#endif
+    (void)g;
+    for (uint32_t e = 0; e < count; ++e)
+        if (exits[e].steps != kNoStep) w[exits[e].slot] = lanesMinimum(acc + uint64_t(e) * kHubBlock);
 }
 
 // Whether no path within the upper bound passes block r, whose nearest hub the source
@@ -483,23 +513,23 @@ struct EndpointBounds {
 // records are the exit bounds' (read anyway), where the row nodes' landmark records would
 // be one scattered read each. False, with nothing written, when some first-layer node of
 // the patch is no hub (no record: pruned graphs).
-bool landmarksThroughSlots(const vg_graph& g, const vg_workspace& ws, uint32_t first, const uint16_t* v,
-                           float* out) {
+// out[k]: the best over candidates [begin, end) of x's distance to the candidate plus its
+// distance to landmark k. A group of kRecordLanes candidates at a time, lane by lane (their
+// records lie field by field).
+inline float slotStepsDistance(const vg_graph& g, const vg_workspace& ws, const uint16_t* v, uint32_t c) {
+    const uint32_t slot = ws.hubSlotOrder[c];
+    return slot == kNone || v[slot] == kNoStep ? __builtin_inff() : float(v[slot]) * g.hubLabelScale;
+}
+
+void landmarksThroughGroups(const vg_graph& g, const vg_workspace& ws, uint32_t begin, uint32_t end,
+                            const uint16_t* v, float* out) {
     const uint64_t stride = 3 + g.landmarkCount;
-    const uint32_t begin = ws.hubSlotRecordBegin[first], end = ws.hubSlotRecordBegin[first + 1];
-    uint32_t hubs = 0;
-    for (uint32_t c = begin; c < end; ++c) hubs += ws.hubSlotOrder[c] != kNone;
-    if (hubs != g.first[first].slotCount) return false;
-    // A group of kRecordLanes candidates at a time, lane by lane (their records lie field by field).
     float best[kMaxLandmarks][kRecordLanes];
     for (uint32_t k = 0; k < g.landmarkCount; ++k)
         for (uint32_t j = 0; j < kRecordLanes; ++j) best[k][j] = __builtin_inff();
     for (uint32_t c = begin; c < end; c += kRecordLanes) {
         float d[kRecordLanes];
-        for (uint32_t j = 0; j < kRecordLanes; ++j) {
-            const uint32_t slot = ws.hubSlotOrder[c + j];
-            d[j] = slot == kNone || v[slot] == kNoStep ? __builtin_inff() : float(v[slot]) * g.hubLabelScale;
-        }
+        for (uint32_t j = 0; j < kRecordLanes; ++j) d[j] = slotStepsDistance(g, ws, v, c + j);
         const float* group = ws.hubSlotRecords + uint64_t(c) * stride;
         for (uint32_t k = 0; k < g.landmarkCount; ++k) {
             const float* field = group + (3 + k) * kRecordLanes;
@@ -513,6 +543,46 @@ bool landmarksThroughSlots(const vg_graph& g, const vg_workspace& ws, uint32_t f
         out[k] = __builtin_inff();
         for (uint32_t j = 0; j < kRecordLanes; ++j) out[k] = best[k][j] < out[k] ? best[k][j] : out[k];
     }
+}
+
+#if VG_HUB_AVX2
+// The same numbers, a group's eight lanes in one register (a minimum is exact, so the
+// order of the final reduction does not matter; no sum here is NaN).
+VG_AVX2_TARGET void landmarksThroughGroupsAvx2(const vg_graph& g, const vg_workspace& ws, uint32_t begin,
+                                               uint32_t end, const uint16_t* v, float* out) {
+    static_assert(kRecordLanes == 8, "one AVX2 register of floats per group");
+    const uint64_t stride = 3 + g.landmarkCount;
+    __m256 best[kMaxLandmarks];
+    for (uint32_t k = 0; k < g.landmarkCount; ++k) best[k] = _mm256_set1_ps(__builtin_inff());
+    for (uint32_t c = begin; c < end; c += kRecordLanes) {
+        alignas(32) float d[kRecordLanes];
+        for (uint32_t j = 0; j < kRecordLanes; ++j) d[j] = slotStepsDistance(g, ws, v, c + j);
+        const __m256 vd = _mm256_load_ps(d);
+        const float* group = ws.hubSlotRecords + uint64_t(c) * stride + 3 * kRecordLanes;
+        for (uint32_t k = 0; k < g.landmarkCount; ++k)
+            best[k] = _mm256_min_ps(_mm256_add_ps(vd, _mm256_loadu_ps(group + k * kRecordLanes)), best[k]);
+    }
+    for (uint32_t k = 0; k < g.landmarkCount; ++k) {
+        const __m128 half = _mm_min_ps(_mm256_castps256_ps128(best[k]), _mm256_extractf128_ps(best[k], 1));
+        const __m128 quarter = _mm_min_ps(half, _mm_movehl_ps(half, half));
+        out[k] = _mm_cvtss_f32(_mm_min_ss(quarter, _mm_shuffle_ps(quarter, quarter, 1)));
+    }
+}
+#endif
+
+bool landmarksThroughSlots(const vg_graph& g, const vg_workspace& ws, uint32_t first, const uint16_t* v,
+                           float* out) {
+    const uint32_t begin = ws.hubSlotRecordBegin[first], end = ws.hubSlotRecordBegin[first + 1];
+    // The candidates are the slots that are hubs, then less than a group of padding.
+    uint32_t hubs = end - begin;
+    for (uint32_t c = end - begin > kRecordLanes ? end - kRecordLanes : begin; c < end; ++c)
+        hubs -= ws.hubSlotOrder[c] == kNone;
+    if (hubs != g.first[first].slotCount) return false;
+#if VG_HUB_AVX2
+    if (g.avx2) landmarksThroughGroupsAvx2(g, ws, begin, end, v, out);
+    else
+#endif
+        landmarksThroughGroups(g, ws, begin, end, v, out);
     const uint64_t inside = ws.hubFirstLandmarks[first];
     for (uint32_t k = 0; k < g.landmarkCount; ++k)
         if ((inside >> k) & 1u) out[k] = __builtin_inff();
@@ -753,6 +823,23 @@ uint32_t exitCosts(const vg_graph& g, const vg_workspace& ws, uint32_t first, co
 }
 
 #if VG_HUB_AVX2
+// The same slot (the first candidate of the smallest finite cost): the minimum over whole
+// groups, then the first lane that holds it.
+VG_AVX2_TARGET uint32_t likeliestExitAvx2(const vg_workspace& ws, uint32_t begin, uint32_t end, const float* cost) {
+    __m256 low = _mm256_set1_ps(__builtin_inff());
+    for (uint32_t c = begin; c < end; c += kRecordLanes) low = _mm256_min_ps(low, _mm256_loadu_ps(cost + (c - begin)));
+    __m128 half = _mm_min_ps(_mm256_castps256_ps128(low), _mm256_extractf128_ps(low, 1));
+    half = _mm_min_ps(half, _mm_movehl_ps(half, half));
+    const float least = _mm_cvtss_f32(_mm_min_ss(half, _mm_shuffle_ps(half, half, 1)));
+    if (!(least < __builtin_inff())) return kNone;
+    const __m256 target = _mm256_set1_ps(least);
+    for (uint32_t c = begin; c < end; c += kRecordLanes) {
+        const int hit = _mm256_movemask_ps(_mm256_cmp_ps(_mm256_loadu_ps(cost + (c - begin)), target, _CMP_EQ_OQ));
+        if (hit != 0) return ws.hubSlotOrder[c + uint32_t(__builtin_ctz(unsigned(hit)))];
+    }
+    return kNone;
+}
+
 // The same, a group of kRecordLanes candidates at a time: the straight line and each
 // landmark's bound (a landmark the other endpoint does not reach is no bound; an infinite
 // difference never is one) as lanes, the same operations in the same order as withLandmarks.
@@ -788,7 +875,7 @@ VG_AVX2_TARGET uint32_t exitCostsAvx2(const vg_graph& g, const vg_workspace& ws,
         const __m256 out = _mm256_add_ps(_mm256_mul_ps(s, scale), _mm256_mul_ps(best, shrink));
         _mm256_storeu_ps(cost + (c - begin), _mm256_blendv_ps(out, inf, _mm256_cmp_ps(s, inf, _CMP_EQ_OQ)));
     }
-    return likeliestExit(ws, begin, end, cost);
+    return likeliestExitAvx2(ws, begin, end, cost);
 }
 #endif
 
@@ -1034,8 +1121,7 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
         const Patch& fp = g.first[first];
         uint16_t* w = ws.hubSlotSteps;
         for (uint32_t k = 0; k < fp.slotCount; ++k) w[k] = kNoStep;
-        for (uint32_t e = 0; e < rowsT.count; ++e)
-            if (exitsT[e].steps != kNoStep) w[exitsT[e].slot] = lanesMinimum(acc + uint64_t(e) * kHubBlock);
+        exitDistances(g, exitsT, rowsT.count, acc, w);
         if (b.node == kNone && !generalMeeting) {  // t inside one second-layer patch: the common case
             const float d = meetInPatch(g, ws, t, first, w, prune, reach);
             *out = d <= maxDistance ? d : __builtin_inff();

@@ -506,21 +506,16 @@ struct EndpointBounds {
     float slack;  // how far a landmark distance may be off beyond the landmark tables' rounding
 };
 
-// x's landmark distances through the first-layer nodes of its patch: x's distance to each
-// (v, in label steps) plus its landmark distance, the best. Every path to a landmark
-// outside the patch leaves it through one of them, so that is x's distance to the
-// landmark, up to rounding; a landmark inside the patch gets +inf (no bound). The nodes'
-// records are the exit bounds' (read anyway), where the row nodes' landmark records would
-// be one scattered read each. False, with nothing written, when some first-layer node of
-// the patch is no hub (no record: pruned graphs).
-// out[k]: the best over candidates [begin, end) of x's distance to the candidate plus its
-// distance to landmark k. A group of kRecordLanes candidates at a time, lane by lane (their
-// records lie field by field).
+// x's distance to candidate c of its patch (v: to each slot, in label steps); +inf for
+// the padding and for slots it does not reach.
 inline float slotStepsDistance(const vg_graph& g, const vg_workspace& ws, const uint16_t* v, uint32_t c) {
     const uint32_t slot = ws.hubSlotOrder[c];
     return slot == kNone || v[slot] == kNoStep ? __builtin_inff() : float(v[slot]) * g.hubLabelScale;
 }
 
+// out[k]: the best over candidates [begin, end) of x's distance to the candidate plus the
+// candidate's distance to landmark k. A group of kRecordLanes candidates at a time, lane by
+// lane (their records lie field by field).
 void landmarksThroughGroups(const vg_graph& g, const vg_workspace& ws, uint32_t begin, uint32_t end,
                             const uint16_t* v, float* out) {
     const uint64_t stride = 3 + g.landmarkCount;
@@ -570,6 +565,13 @@ VG_AVX2_TARGET void landmarksThroughGroupsAvx2(const vg_graph& g, const vg_works
 }
 #endif
 
+// x's landmark distances through the first-layer nodes of its patch: x's distance to each
+// (v, in label steps) plus its landmark distance, the best. Every path to a landmark
+// outside the patch leaves it through one of them, so that is x's distance to the
+// landmark, up to rounding; a landmark inside the patch gets +inf (no bound). The nodes'
+// records are the exit bounds' (read anyway), where the row nodes' landmark records would
+// be one scattered read each. False, with nothing written, when some first-layer node of
+// the patch is no hub (no record: pruned graphs).
 bool landmarksThroughSlots(const vg_graph& g, const vg_workspace& ws, uint32_t first, const uint16_t* v,
                            float* out) {
     const uint32_t begin = ws.hubSlotRecordBegin[first], end = ws.hubSlotRecordBegin[first + 1];

@@ -40,6 +40,16 @@ uint16_t meetSteps(const uint16_t* d, const uint16_t* steps, uint32_t n) {
 }
 
 #if VG_HUB_AVX2
+// The smallest of a vector's lanes: 16 label steps, or 8 floats (not NaN).
+VG_AVX2_TARGET inline uint16_t lanesMinimum(__m256i x) {
+    return uint16_t(_mm_cvtsi128_si32(_mm_minpos_epu16(_mm_min_epu16(_mm256_castsi256_si128(x), _mm256_extracti128_si256(x, 1)))));
+}
+VG_AVX2_TARGET inline float lanesMinimum(__m256 x) {
+    __m128 half = _mm_min_ps(_mm256_castps256_ps128(x), _mm256_extractf128_ps(x, 1));
+    half = _mm_min_ps(half, _mm_movehl_ps(half, half));
+    return _mm_cvtss_f32(_mm_min_ss(half, _mm_shuffle_ps(half, half, 1)));
+}
+
 // A row whose length is no multiple of 16 ends with one more vector over its last 16
 // entries, overlapping the one before: taking a minimum twice changes nothing, and the
 // scalar loop it replaces was a quarter of the kernel's work on igea's rows (~310).
@@ -69,8 +79,7 @@ VG_AVX2_TARGET uint16_t meetStepsAvx2(const uint16_t* d, const uint16_t* steps, 
     uint32_t k = 0;
     for (; k + 16 <= n; k += 16) meetSteps16(d + k, steps + k, best);
     if (k < n) meetSteps16(d + n - 16, steps + n - 16, best);
-    const __m128i half = _mm_min_epu16(_mm256_castsi256_si128(best), _mm256_extracti128_si256(best, 1));
-    return uint16_t(_mm_cvtsi128_si32(_mm_minpos_epu16(half)));
+    return lanesMinimum(best);
 }
 #endif
 
@@ -215,26 +224,26 @@ uint16_t lanesMinimum(const uint16_t* lanes) {
     return best;
 }
 
+// w[slot]: the source's distance to each exit of the target side that the bounds kept, the
+// best over its 16 lanes in acc (one per exit); the others stay as they are.
+void exitDistances(const HubExit* exits, uint32_t count, const uint16_t* acc, uint16_t* w) {
+    for (uint32_t e = 0; e < count; ++e)
+        if (exits[e].steps != kNoStep) w[exits[e].slot] = lanesMinimum(acc + uint64_t(e) * kHubBlock);
+}
+
 #if VG_HUB_AVX2
-VG_AVX2_TARGET inline uint16_t lanesMinimumAvx2(const uint16_t* lanes) {
-    const __m256i x = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(lanes));
-    return uint16_t(_mm_cvtsi128_si32(_mm_minpos_epu16(_mm_min_epu16(_mm256_castsi256_si128(x), _mm256_extracti128_si256(x, 1)))));
+VG_AVX2_TARGET void exitDistancesAvx2(const HubExit* exits, uint32_t count, const uint16_t* acc, uint16_t* w) {
+    for (uint32_t e = 0; e < count; ++e)
+        if (exits[e].steps != kNoStep)
+            w[exits[e].slot] = lanesMinimum(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(acc + uint64_t(e) * kHubBlock)));
 }
 #endif
 
-// w[slot]: the source's distance to each exit of the target side that the bounds kept, the
-// best over its 16 lanes in acc (one per exit); the others stay as they are.
-void exitDistances(const vg_graph& g, const HubExit* exits, uint32_t count, const uint16_t* acc, uint16_t* w) {
+void exitDistancesOn(const vg_graph& g, const HubExit* exits, uint32_t count, const uint16_t* acc, uint16_t* w) {
 #if VG_HUB_AVX2
-    if (g.avx2) {
-        for (uint32_t e = 0; e < count; ++e)
-            if (exits[e].steps != kNoStep) w[exits[e].slot] = lanesMinimumAvx2(acc + uint64_t(e) * kHubBlock);
-        return;
-    }
+    if (g.avx2) return exitDistancesAvx2(exits, count, acc, w);
 #endif
-    (void)g;
-    for (uint32_t e = 0; e < count; ++e)
-        if (exits[e].steps != kNoStep) w[exits[e].slot] = lanesMinimum(acc + uint64_t(e) * kHubBlock);
+    exitDistances(exits, count, acc, w);
 }
 
 // Whether no path within the upper bound passes block r, whose nearest hub the source
@@ -391,8 +400,7 @@ VG_AVX2_TARGET void targetColumnsAvx2(const vg_graph& g, const uint16_t* d, cons
     for (uint32_t i = 0; i < blockCount; ++i) {
         const HubBlockRef r = blocks[i];
         const __m256i di = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(d + uint64_t(i) * kHubBlock));
-        const __m128i half = _mm_min_epu16(_mm256_castsi256_si128(di), _mm256_extracti128_si256(di, 1));
-        const bool read = !outOfRoom(g, r, uint16_t(_mm_cvtsi128_si32(_mm_minpos_epu16(half))));
+        const bool read = !outOfRoom(g, r, lanesMinimum(di));
         uint32_t nextN = 0;
         if (i + 1 < blockCount) {
             nextN = blockRows(g, side, blocks[i + 1], nextRows);
@@ -557,11 +565,7 @@ VG_AVX2_TARGET void landmarksThroughGroupsAvx2(const vg_graph& g, const vg_works
         for (uint32_t k = 0; k < g.landmarkCount; ++k)
             best[k] = _mm256_min_ps(_mm256_add_ps(vd, _mm256_loadu_ps(group + k * kRecordLanes)), best[k]);
     }
-    for (uint32_t k = 0; k < g.landmarkCount; ++k) {
-        const __m128 half = _mm_min_ps(_mm256_castps256_ps128(best[k]), _mm256_extractf128_ps(best[k], 1));
-        const __m128 quarter = _mm_min_ps(half, _mm_movehl_ps(half, half));
-        out[k] = _mm_cvtss_f32(_mm_min_ss(quarter, _mm_shuffle_ps(quarter, quarter, 1)));
-    }
+    for (uint32_t k = 0; k < g.landmarkCount; ++k) out[k] = lanesMinimum(best[k]);
 }
 #endif
 
@@ -830,9 +834,7 @@ uint32_t exitCosts(const vg_graph& g, const vg_workspace& ws, uint32_t first, co
 VG_AVX2_TARGET uint32_t likeliestExitAvx2(const vg_workspace& ws, uint32_t begin, uint32_t end, const float* cost) {
     __m256 low = _mm256_set1_ps(__builtin_inff());
     for (uint32_t c = begin; c < end; c += kRecordLanes) low = _mm256_min_ps(low, _mm256_loadu_ps(cost + (c - begin)));
-    __m128 half = _mm_min_ps(_mm256_castps256_ps128(low), _mm256_extractf128_ps(low, 1));
-    half = _mm_min_ps(half, _mm_movehl_ps(half, half));
-    const float least = _mm_cvtss_f32(_mm_min_ss(half, _mm_shuffle_ps(half, half, 1)));
+    const float least = lanesMinimum(low);
     if (!(least < __builtin_inff())) return kNone;
     const __m256 target = _mm256_set1_ps(least);
     for (uint32_t c = begin; c < end; c += kRecordLanes) {
@@ -1123,7 +1125,7 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
         const Patch& fp = g.first[first];
         uint16_t* w = ws.hubSlotSteps;
         for (uint32_t k = 0; k < fp.slotCount; ++k) w[k] = kNoStep;
-        exitDistances(g, exitsT, rowsT.count, acc, w);
+        exitDistancesOn(g, exitsT, rowsT.count, acc, w);
         if (b.node == kNone && !generalMeeting) {  // t inside one second-layer patch: the common case
             const float d = meetInPatch(g, ws, t, first, w, prune, reach);
             *out = d <= maxDistance ? d : __builtin_inff();

@@ -514,6 +514,21 @@ struct EndpointBounds {
     float slack;  // how far a landmark distance may be off beyond the landmark tables' rounding
 };
 
+// An exit candidate's landmark distance from its record's steps, as the node records have it.
+inline float landmarkStepsDistance(const vg_graph& g, uint32_t k, uint16_t steps) {
+    return steps == kLandmarkUnreachable ? __builtin_inff() : float(steps) * g.landmarkScale[k];
+}
+
+#if VG_HUB_AVX2
+// The same for the eight candidates of a group at once (the same product, exact).
+VG_AVX2_TARGET inline __m256 landmarkStepsDistances(const uint16_t* steps, float scale) {
+    const __m256i wide = _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(steps)));
+    const __m256 d = _mm256_mul_ps(_mm256_cvtepi32_ps(wide), _mm256_set1_ps(scale));
+    const __m256 none = _mm256_castsi256_ps(_mm256_cmpeq_epi32(wide, _mm256_set1_epi32(kLandmarkUnreachable)));
+    return _mm256_blendv_ps(d, _mm256_set1_ps(__builtin_inff()), none);
+}
+#endif
+
 // x's distance to candidate c of its patch (v: to each slot, in label steps); +inf for
 // the padding and for slots it does not reach.
 inline float slotStepsDistance(const vg_graph& g, const vg_workspace& ws, const uint16_t* v, uint32_t c) {
@@ -526,18 +541,17 @@ inline float slotStepsDistance(const vg_graph& g, const vg_workspace& ws, const 
 // lane (their records lie field by field).
 void landmarksThroughGroups(const vg_graph& g, const vg_workspace& ws, uint32_t begin, uint32_t end,
                             const uint16_t* v, float* out) {
-    const uint64_t stride = 3 + g.landmarkCount;
     float best[kMaxLandmarks][kRecordLanes];
     for (uint32_t k = 0; k < g.landmarkCount; ++k)
         for (uint32_t j = 0; j < kRecordLanes; ++j) best[k][j] = __builtin_inff();
     for (uint32_t c = begin; c < end; c += kRecordLanes) {
         float d[kRecordLanes];
         for (uint32_t j = 0; j < kRecordLanes; ++j) d[j] = slotStepsDistance(g, ws, v, c + j);
-        const float* group = ws.hubSlotRecords + uint64_t(c) * stride;
+        const uint16_t* group = ws.hubSlotLandmarks + uint64_t(c) * g.landmarkCount;
         for (uint32_t k = 0; k < g.landmarkCount; ++k) {
-            const float* field = group + (3 + k) * kRecordLanes;
+            const uint16_t* field = group + k * kRecordLanes;
             for (uint32_t j = 0; j < kRecordLanes; ++j) {
-                const float through = d[j] + field[j];
+                const float through = d[j] + landmarkStepsDistance(g, k, field[j]);
                 best[k][j] = through < best[k][j] ? through : best[k][j];
             }
         }
@@ -554,16 +568,16 @@ void landmarksThroughGroups(const vg_graph& g, const vg_workspace& ws, uint32_t 
 VG_AVX2_TARGET void landmarksThroughGroupsAvx2(const vg_graph& g, const vg_workspace& ws, uint32_t begin,
                                                uint32_t end, const uint16_t* v, float* out) {
     static_assert(kRecordLanes == 8, "one AVX2 register of floats per group");
-    const uint64_t stride = 3 + g.landmarkCount;
     __m256 best[kMaxLandmarks];
     for (uint32_t k = 0; k < g.landmarkCount; ++k) best[k] = _mm256_set1_ps(__builtin_inff());
     for (uint32_t c = begin; c < end; c += kRecordLanes) {
         alignas(32) float d[kRecordLanes];
         for (uint32_t j = 0; j < kRecordLanes; ++j) d[j] = slotStepsDistance(g, ws, v, c + j);
         const __m256 vd = _mm256_load_ps(d);
-        const float* group = ws.hubSlotRecords + uint64_t(c) * stride + 3 * kRecordLanes;
+        const uint16_t* group = ws.hubSlotLandmarks + uint64_t(c) * g.landmarkCount;
         for (uint32_t k = 0; k < g.landmarkCount; ++k)
-            best[k] = _mm256_min_ps(_mm256_add_ps(vd, _mm256_loadu_ps(group + k * kRecordLanes)), best[k]);
+            best[k] = _mm256_min_ps(_mm256_add_ps(vd, landmarkStepsDistances(group + k * kRecordLanes, g.landmarkScale[k])),
+                                    best[k]);
     }
     for (uint32_t k = 0; k < g.landmarkCount; ++k) out[k] = lanesMinimum(best[k]);
 }
@@ -813,7 +827,6 @@ uint32_t likeliestExit(const vg_workspace& ws, uint32_t begin, uint32_t end, con
 
 uint32_t exitCosts(const vg_graph& g, const vg_workspace& ws, uint32_t first, const uint16_t* v,
                    const EndpointBounds& other, float* cost) {
-    const uint64_t stride = 3 + g.landmarkCount;
     const uint32_t begin = ws.hubSlotRecordBegin[first], end = ws.hubSlotRecordBegin[first + 1];
     float record[3 + kMaxLandmarks];
     for (uint32_t c = begin; c < end; ++c) {
@@ -821,7 +834,9 @@ uint32_t exitCosts(const vg_graph& g, const vg_workspace& ws, uint32_t first, co
         float& out = cost[c - begin];
         out = __builtin_inff();
         if (k == kNone || v[k] == kNoStep) continue;
-        for (uint64_t f = 0; f < stride; ++f) record[f] = slotRecordField(ws.hubSlotRecords, stride, c, f);
+        for (uint32_t a = 0; a < 3; ++a) record[a] = slotPosition(ws.hubSlotPositions, c, a);
+        for (uint32_t i = 0; i < g.landmarkCount; ++i)
+            record[3 + i] = landmarkStepsDistance(g, i, slotLandmark(ws.hubSlotLandmarks, g.landmarkCount, c, i));
         const float bound = withLandmarks(g, record, other.landmarks, recordDistance(record, other.position), other.slack);
         out = float(v[k]) * g.hubLabelScale + bound * kBoundShrink;
     }
@@ -850,14 +865,14 @@ VG_AVX2_TARGET uint32_t likeliestExitAvx2(const vg_workspace& ws, uint32_t begin
 VG_AVX2_TARGET uint32_t exitCostsAvx2(const vg_graph& g, const vg_workspace& ws, uint32_t first, const uint16_t* v,
                                       const EndpointBounds& other, float* cost) {
     static_assert(kRecordLanes == 8, "one AVX2 register of floats per group");
-    const uint64_t stride = 3 + g.landmarkCount;
     const uint32_t begin = ws.hubSlotRecordBegin[first], end = ws.hubSlotRecordBegin[first + 1];
     const __m256 inf = _mm256_set1_ps(__builtin_inff()), absMask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
     const __m256 px = _mm256_set1_ps(other.position[0]), py = _mm256_set1_ps(other.position[1]),
                  pz = _mm256_set1_ps(other.position[2]);
     const __m256 scale = _mm256_set1_ps(g.hubLabelScale), shrink = _mm256_set1_ps(kBoundShrink);
     for (uint32_t c = begin; c < end; c += kRecordLanes) {
-        const float* group = ws.hubSlotRecords + uint64_t(c) * stride;
+        const float* group = ws.hubSlotPositions + uint64_t(c) * 3;
+        const uint16_t* landmarks = ws.hubSlotLandmarks + uint64_t(c) * g.landmarkCount;
         alignas(32) float steps[kRecordLanes];
         for (uint32_t j = 0; j < kRecordLanes; ++j) {
             const uint32_t k = ws.hubSlotOrder[c + j];
@@ -869,7 +884,7 @@ VG_AVX2_TARGET uint32_t exitCostsAvx2(const vg_graph& g, const vg_workspace& ws,
         __m256 best = _mm256_sqrt_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
                                                    _mm256_mul_ps(dz, dz)));
         for (uint32_t k = 0; k < g.landmarkCount; ++k) {
-            const __m256 rk = _mm256_loadu_ps(group + (3 + k) * kRecordLanes);
+            const __m256 rk = landmarkStepsDistances(landmarks + k * kRecordLanes, g.landmarkScale[k]);
             const __m256 d = _mm256_sub_ps(_mm256_and_ps(_mm256_sub_ps(rk, _mm256_set1_ps(other.landmarks[k])), absMask),
                                            _mm256_set1_ps(2.0f * g.landmarkScale[k] + other.slack));
             const __m256 take = _mm256_and_ps(_mm256_cmp_ps(d, best, _CMP_GT_OQ), _mm256_cmp_ps(d, inf, _CMP_NEQ_OQ));

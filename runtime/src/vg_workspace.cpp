@@ -132,7 +132,8 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     const uint64_t candidates = g.hubTreeCount ? firstSlotCount(g) + uint64_t(g.firstCount) * vg::kRecordLanes : 0;
     o.hubSlotOrder = L.take<uint32_t>(candidates);
     o.hubSlotHub = L.take<uint32_t>(candidates);
-    o.hubSlotRecords = L.take<float>(candidates * (3 + uint64_t(g.landmarkCount)));
+    o.hubSlotPositions = L.take<float>(candidates * 3);
+    o.hubSlotLandmarks = L.take<uint16_t>(candidates * uint64_t(g.landmarkCount));
     o.hubFirstLandmarks = L.take<uint64_t>(g.hubTreeCount ? g.firstCount : 0);
     o.hubBlocks = L.take<vg::HubBlockRef>(pathBlocks);
     o.hubBlocksAbove = L.take<uint32_t>(g.hubTreeCount);
@@ -197,9 +198,9 @@ void fillHubBlockBegin(const vg_graph& g, uint32_t* begin) {
 // their node records side by side in groups of kRecordLanes, field by field
 // (vg_workspace.h), so that the bounds of a group are one vector step. Each patch starts a
 // group; the slots that pad its last group are kNone.
-void fillHubSlotRecords(const vg_graph& g, const float* nodeRecords, uint32_t* begin, uint32_t* order,
-                        uint32_t* hubs, float* slotRecords) {
-    const uint64_t stride = 3 + uint64_t(g.landmarkCount);
+void fillHubSlotRecords(const vg_graph& g, uint32_t* begin, uint32_t* order, uint32_t* hubs, float* positions,
+                        uint16_t* landmarks) {
+    const uint32_t L = g.landmarkCount;
     uint32_t next = 0;
     auto hubOf = [&](uint32_t p, uint32_t k) { return g.nodeHub[g.slots[g.first[p].slotBegin + k]]; };
     for (uint32_t p = 0; p < g.firstCount; ++p) {
@@ -215,8 +216,10 @@ void fillHubSlotRecords(const vg_graph& g, const float* nodeRecords, uint32_t* b
         for (uint32_t i = begin[p]; i < next; ++i) {
             const uint32_t node = order[i] == vg::kNone ? vg::kNone : g.slots[g.first[p].slotBegin + order[i]];
             hubs[i] = node == vg::kNone ? vg::kNone : g.nodeHub[node];
-            for (uint64_t f = 0; f < stride; ++f)
-                vg::slotRecordField(slotRecords, stride, i, f) = node == vg::kNone ? 0.0f : nodeRecords[uint64_t(node) * stride + f];
+            const float* p = node == vg::kNone ? nullptr : g.positions + 3 * uint64_t(g.nodeVertex[node]);
+            for (uint32_t a = 0; a < 3; ++a) vg::slotPosition(positions, i, a) = p ? p[a] : 0.0f;
+            for (uint32_t k = 0; k < L; ++k)
+                vg::slotLandmark(landmarks, L, i, k) = node == vg::kNone ? 0 : g.nodeLandmarks[uint64_t(node) * L + k];
         }
     }
     begin[g.firstCount] = next;
@@ -322,8 +325,8 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
         ws->hubBlocksAbove[t] = parent == vg::kNone ? 0 : ws->hubBlocksAbove[parent] + ws->hubBlockBegin[parent + 1] - ws->hubBlockBegin[parent];
     }
     if (graph->hubTreeCount) {
-        fillHubSlotRecords(*graph, ws->nodeRecords, ws->hubSlotRecordBegin, ws->hubSlotOrder, ws->hubSlotHub,
-                           ws->hubSlotRecords);
+        fillHubSlotRecords(*graph, ws->hubSlotRecordBegin, ws->hubSlotOrder, ws->hubSlotHub, ws->hubSlotPositions,
+                           ws->hubSlotLandmarks);
         fillHubFirstLandmarks(*graph, ws->hubFirstLandmarks);
         fillHubPatchReach(*graph, ws->hubPatchReach);
         fillHubInnerRows(*graph, ws->hubInnerRowOfSlot);

@@ -252,8 +252,9 @@ struct vg_workspace {
     uint32_t* hubSlotRecordBegin;  // ... per first-layer patch (+ 1) its first exit candidate,
     uint32_t* hubSlotOrder;        // ... per patch its slots that are hubs, in hub order (kNone pads),
     uint32_t* hubSlotHub;          // ... their hub numbers (kNone pads),
-    float* hubSlotRecords;         // ... and their nodes' records by groups of kRecordLanes
-                                   //     (slotRecordField; all four filled at init),
+    float* hubSlotPositions;       // ... and their nodes' positions and landmark distances (as the
+    uint16_t* hubSlotLandmarks;    //     landmark table's steps) by groups of kRecordLanes
+                                   //     (slotPosition, slotLandmark; all five filled at init),
     uint64_t* hubFirstLandmarks;   // ... per first-layer patch the landmarks inside it, a bit each
                                    //     (filled at init),
     vg::HubBlockRef* hubBlocks;    // ... and the blocks of the common tree path a query reads,
@@ -267,15 +268,20 @@ struct vg_workspace {
 
 namespace vg {
 
-// The exit candidates' node records (position, then landmark distances: `stride` fields) are
-// stored in groups of kRecordLanes candidates, field by field, so that the query bounds a
-// group at once.
+// The exit candidates' node records (position, then landmark distances) are stored in groups
+// of kRecordLanes candidates, field by field, so that the query bounds a group at once. The
+// landmark distances stay the table's 16-bit steps (kLandmarkUnreachable: none), half the
+// bytes of floats: a label query reads both endpoints' candidates with cold caches, and
+// converts them exactly as the node records are filled (steps times the landmark's scale).
 constexpr uint32_t kRecordLanes = 8;
 // A label query side reads the exit lists of at most this many second-layer patches (an
 // endpoint on more patches' borders reads every exit's rows instead).
 constexpr uint32_t kMaxSidePatches = 8;
-inline float& slotRecordField(float* records, uint64_t stride, uint64_t candidate, uint64_t field) {
-    return records[(candidate / kRecordLanes) * kRecordLanes * stride + field * kRecordLanes + candidate % kRecordLanes];
+inline float& slotPosition(float* positions, uint64_t candidate, uint64_t axis) {
+    return positions[(candidate / kRecordLanes) * kRecordLanes * 3 + axis * kRecordLanes + candidate % kRecordLanes];
+}
+inline uint16_t& slotLandmark(uint16_t* landmarks, uint64_t landmarkCount, uint64_t candidate, uint64_t k) {
+    return landmarks[(candidate / kRecordLanes) * kRecordLanes * landmarkCount + k * kRecordLanes + candidate % kRecordLanes];
 }
 
 // Legs a path may have (its node chain plus the endpoints and a crossing, twice over for

@@ -52,8 +52,8 @@ void validate(const Mesh& mesh, const BakeOptions& o) {
     if (!(o.delta < 0 || (std::isfinite(o.delta) && o.delta < 1)))
         throw std::invalid_argument("--delta must be a finite fraction of the bounding-box diagonal in [0, 1)");
     if (o.marginRings > 8) throw std::invalid_argument("--margin-rings must be in [0, 8]");
-    if (o.compressionLevel < 1 || o.compressionLevel > 22)
-        throw std::invalid_argument("compression level must be in [1, 22]");
+    if (o.compressionLevel < 0 || o.compressionLevel > 22)
+        throw std::invalid_argument("compression level must be in [1, 22] (0: automatic)");
     if (o.compact && !o.compress)
         throw std::invalid_argument("--compact codes the distances for compression: it cannot go with --no-compress");
 }
@@ -157,7 +157,8 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
         payload.bytes = std::move(buffer);
     }
     report.flatbufferBytes = payload.flatbufferSize;
-    std::vector<uint8_t> blob = packContainer(std::move(payload), options.compress, options.compact, options.compressionLevel);
+    const int level = options.compressionLevel > 0 ? options.compressionLevel : options.compact ? 19 : 9;
+    std::vector<uint8_t> blob = packContainer(std::move(payload), options.compress, options.compact, level);
     report.blobBytes = blob.size();
     if (progress) progress("writing blob", 1.0);
     clock.end(options.compress ? "compress" : "container");

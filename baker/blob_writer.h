@@ -55,8 +55,11 @@ std::vector<uint8_t> packContainer(std::vector<uint8_t> flatbuffer, bool compres
 // them; VG_FLAG_CODED_DISTANCES only says they are coded): what packContainer uses, and
 // how the fuzzers seal mutated flatbuffers. The flatbuffer is the first flatbufferSize
 // bytes (all of them by default), the rest from the next multiple of 64 bytes the tables.
+// Compressed, every `frameBytes` of payload become a zstd frame (0: the format's
+// VG_CONTAINER_FRAME_BYTES; other sizes, for the tests, open the same).
 std::vector<uint8_t> sealContainer(const std::vector<uint8_t>& payload, uint32_t flags, int level,
-                                   uint64_t flatbufferSize = UINT64_MAX);
+                                   uint64_t flatbufferSize = UINT64_MAX,
+                                   uint64_t frameBytes = 0);
 
 // Throws std::runtime_error ("cannot write PATH: reason") if `path` cannot be created, by
 // creating and removing its temporary file: a bake checks this before its long work.

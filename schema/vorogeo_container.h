@@ -1,9 +1,9 @@
-/* The vorogeo blob container (format version 9), shared by the baker and the runtime.
+/* The vorogeo blob container (format version 10), shared by the baker and the runtime.
  *
  *   offset  size  field
  *        0     8  magic "VOROGEO\0"
  *        8     4  format version (little-endian uint32) = VG_FORMAT_VERSION
- *       12     4  flags: bit 0 = payload is one zstd frame; bit 1 = the flatbuffer's distance
+ *       12     4  flags: bit 0 = payload is zstd frames; bit 1 = the flatbuffer's distance
  *                  matrices (vorogeo_distance_coding.h) and hub-label tables
  *                  (vorogeo_label_coding.h) are prediction-coded; other bits 0
  *       16     8  payload size in bytes (what follows the header)
@@ -11,7 +11,13 @@
  *       32     8  table bytes: the hub-label tables after the flatbuffer (0 without labels)
  *       40     8  checksum of the payload bytes (vg_checksum64 below)
  *       48        payload: the flatbuffer of schema/vorogeo.fbs, then (with hub labels) its
- *                  tables, or a zstd frame holding both
+ *                  tables, or zstd frames holding both, one after another
+ *
+ * Compressed, the unpacked payload is cut into pieces of VG_CONTAINER_FRAME_BYTES (the last
+ * one shorter), each a zstd frame that states its content size, so that the baker compresses
+ * them on all its threads and still writes the same bytes for any thread count (a frame of
+ * zstd's own multithreaded mode may differ with the thread count). A reader decompresses the
+ * frames back to back (ZSTD_decompress takes them as one input) and needs no piece size.
  *
  * The tables lie outside the flatbuffer because a flatbuffer's 32-bit offsets end at 2 GiB,
  * which the labels of a 2-million-vertex mesh pass alone. Unpacked, the payload is the
@@ -30,9 +36,12 @@
 
 #define VG_CONTAINER_MAGIC "VOROGEO"
 #define VG_CONTAINER_HEADER_SIZE 48u
-#define VG_FORMAT_VERSION 9u
+#define VG_FORMAT_VERSION 10u
 #define VG_FLAG_ZSTD 1u
 #define VG_FLAG_CODED_DISTANCES 2u
+/* Unpacked bytes per zstd frame of a compressed payload (the baker's choice, 8 MiB: with the
+ * 256 KB window of coded blobs, the cuts cost igea's blob 0.02% at level 9, 0.24% at 19). */
+#define VG_CONTAINER_FRAME_BYTES (8u << 20)
 
 static inline uint64_t vg_load_le64(const unsigned char* p) {
     uint64_t v = 0;

@@ -371,6 +371,13 @@ TEST_CASE("bake command: writes the blob, the report and a summary", "[bake][cli
     tools::BlobContents c;
     REQUIRE(tools::readBlobFile(out, c, error));
     // `vorogeo info` describes the blob; a truncated copy is rejected with the reason.
+    // --level changes the compressed bytes only.
+    const std::string fast = dir.file("fast.vgeo");
+    REQUIRE(test::runTool("bake " + test::quote(meshPath) + " -o " + test::quote(fast) + " --level 1 --quiet").status == 0);
+    tools::BlobContents f;
+    REQUIRE(tools::readBlobFile(fast, f, error));
+    CHECK(f.flatbuffer == c.flatbuffer);
+    CHECK(std::filesystem::file_size(fast) != std::filesystem::file_size(out));
     const test::ToolResult info = test::runTool("info " + test::quote(out) + " --json");
     CHECK(info.status == 0);
     CHECK(info.out.find("\"vertices\":1800") != std::string::npos);
@@ -407,6 +414,9 @@ TEST_CASE("bake command: bad parameters and outputs give clear errors and leave 
         {"--delta abc", "--delta", 2},
         {"--threads 0x", "--threads", 2},
         {"--frobnicate", "--frobnicate", 2},
+        {"--level 0", "--level must be in [1, 22]", 2},
+        {"--level 23", "--level must be in [1, 22]", 2},
+        {"--level 5 --no-compress", "--level sets the zstd level", 2},
     };
     for (const Case& c : cases) {
         const test::ToolResult r = test::runTool("bake " + test::quote(meshPath) + " -o " + test::quote(out) + " " + c.args);

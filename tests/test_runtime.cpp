@@ -31,6 +31,10 @@
 #include "vorogeo_container.h"
 #include "vorogeo_generated.h"
 
+#define ZSTD_STATIC_LINKING_ONLY
+#include <zstd.h>
+#include <tbb/global_control.h>
+
 using namespace vorogeo;
 using tools::RuntimeGraph;
 using tools::RuntimeWorkspace;
@@ -574,6 +578,76 @@ TEST_CASE("runtime: every truncation and every flipped byte of a blob is rejecte
     std::vector<uint8_t> longer = blob;
     longer.push_back(0);
     CHECK_FALSE(openAndQuery(longer));
+}
+
+TEST_CASE("runtime: a payload in several zstd frames opens as in one; frames of another size are refused", "[runtime]") {
+    // The baker cuts a compressed payload into frames of VG_CONTAINER_FRAME_BYTES; here
+    // frames of 4 KB, so that a small labelled blob has hundreds of them.
+    const Mesh mesh = bumpyTorus(60, 30);
+    BakeOptions o;
+    o.compress = false;
+    o.hubLabels = true;
+    BakeReport report;
+    const std::vector<uint8_t> plain = bakeMesh(mesh, o, report, nullptr);
+    const std::vector<uint8_t> payload(plain.begin() + VG_CONTAINER_HEADER_SIZE, plain.end());
+    const uint64_t flatbufferSize = vg_load_le64(plain.data() + 24);
+    const std::vector<uint8_t> one = sealContainer(payload, VG_FLAG_ZSTD, 3, flatbufferSize, uint64_t(1) << 40);
+    const std::vector<uint8_t> many = sealContainer(payload, VG_FLAG_ZSTD, 3, flatbufferSize, 4096);
+    REQUIRE(payload.size() > 100 * 4096);
+    CHECK(ZSTD_findDecompressedSize(one.data() + VG_CONTAINER_HEADER_SIZE, one.size() - VG_CONTAINER_HEADER_SIZE) ==
+          payload.size());
+    CHECK(ZSTD_getFrameContentSize(many.data() + VG_CONTAINER_HEADER_SIZE, many.size() - VG_CONTAINER_HEADER_SIZE) == 4096);
+    size_t needOne = 0, needMany = 0;
+    REQUIRE(vg_open_size(one.data(), one.size(), &needOne) == VG_OK);
+    REQUIRE(vg_open_size(many.data(), many.size(), &needMany) == VG_OK);
+    CHECK(needOne == needMany);
+    RuntimeGraph a = openOrFail(plain), b = openOrFail(many);
+    RuntimeWorkspace wa(a.graph()), wb(b.graph());
+    for (uint32_t s : {0u, 17u, 900u})
+        for (uint32_t t : {5u, 1200u, 1799u}) CHECK(wa.distance(s, t) == wb.distance(s, t));
+
+    // The same bytes for any number of threads.
+    {
+        tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+        CHECK(sealContainer(payload, VG_FLAG_ZSTD, 3, flatbufferSize, 4096) == many);
+    }
+
+    // A header that claims another unpacked size than the frames hold together, frames
+    // missing at the end, a frame that does not state its size: refused before any memory
+    // is sized by them.
+    auto sizeStatus = [](const std::vector<uint8_t>& blob) {
+        size_t need = 0;
+        return vg_open_size(blob.data(), blob.size(), &need);
+    };
+    std::vector<uint8_t> claims = many;
+    vg_store_le64(claims.data() + 32, vg_load_le64(many.data() + 32) + 64);  // 64 table bytes more
+    CHECK(sizeStatus(claims) == VG_ERR_DECOMPRESSION);
+    size_t at = VG_CONTAINER_HEADER_SIZE, frames = 0, lastStart = at;
+    while (at < many.size()) {
+        lastStart = at;
+        at += ZSTD_findFrameCompressedSize(many.data() + at, many.size() - at);
+        ++frames;
+    }
+    REQUIRE(at == many.size());
+    CHECK(frames == (payload.size() + 4095) / 4096);
+    std::vector<uint8_t> shorter(many.begin(), many.begin() + long(lastStart));
+    vg_store_le64(shorter.data() + 16, shorter.size() - VG_CONTAINER_HEADER_SIZE);
+    resealChecksum(shorter);
+    CHECK(sizeStatus(shorter) == VG_ERR_DECOMPRESSION);
+    std::vector<uint8_t> unsized(many.begin(), many.begin() + long(lastStart));
+    {
+        const size_t tail = payload.size() - (frames - 1) * 4096;
+        std::vector<uint8_t> frame(ZSTD_compressBound(tail));
+        ZSTD_CCtx* context = ZSTD_createCCtx();
+        ZSTD_CCtx_setParameter(context, ZSTD_c_contentSizeFlag, 0);
+        const size_t n = ZSTD_compress2(context, frame.data(), frame.size(), payload.data() + (frames - 1) * 4096, tail);
+        ZSTD_freeCCtx(context);
+        REQUIRE_FALSE(ZSTD_isError(n));
+        unsized.insert(unsized.end(), frame.begin(), frame.begin() + long(n));
+    }
+    vg_store_le64(unsized.data() + 16, unsized.size() - VG_CONTAINER_HEADER_SIZE);
+    resealChecksum(unsized);
+    CHECK(sizeStatus(unsized) == VG_ERR_DECOMPRESSION);
 }
 
 TEST_CASE("runtime: corrupt flatbuffers with a valid checksum are refused or answered safely", "[runtime]") {

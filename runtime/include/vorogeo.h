@@ -48,7 +48,7 @@
 #define VG_VERSION_NUMBER ((VG_VERSION_MAJOR << 16) | (VG_VERSION_MINOR << 8) | VG_VERSION_PATCH)
 /* Blob format this library reads. Independent of the library version: it changes only
  * when the bytes of a .vgeo file change meaning (docs/FORMAT.md). */
-#define VG_BLOB_FORMAT_VERSION 9
+#define VG_BLOB_FORMAT_VERSION 10
 
 #ifdef __cplusplus
 extern "C" {
@@ -64,7 +64,7 @@ typedef enum vg_status {
     VG_ERR_UNSUPPORTED_VERSION = 5, /* a format version this library does not read */
     VG_ERR_UNSUPPORTED_FLAGS = 6,   /* unknown flags, or compressed while built without zstd */
     VG_ERR_CHECKSUM = 7,            /* payload bytes do not match the header's checksum */
-    VG_ERR_DECOMPRESSION = 8,       /* the zstd frame is corrupt or of the wrong size */
+    VG_ERR_DECOMPRESSION = 8,       /* the zstd frames are corrupt or of the wrong size */
     VG_ERR_CORRUPT_STRUCTURE = 9,   /* the flatbuffer fails verification (or its arrays overlap where decoded) */
     VG_ERR_CORRUPT_CONTENT = 10,    /* an index out of range or inconsistent counts */
     VG_ERR_INVALID_VERTEX = 11,     /* a vertex id >= vg_vertex_count() */
@@ -96,9 +96,9 @@ typedef struct vg_graph vg_graph;
 
 /* Bytes of caller memory vg_open needs for this blob: the handle, plus for a compressed
  * blob the decompressed graph and the decompression context (and, for its coded
- * distances, the decoder's scratch: docs/FORMAT.md). Reads only the 48-byte header (and
- * the zstd frame's header, which states the unpacked size); errors as vg_open for a bad
- * header. */
+ * distances, the decoder's scratch: docs/FORMAT.md). Reads only the 48-byte header (and,
+ * compressed, the headers of the zstd frames, whose stated sizes add up to the unpacked
+ * size); errors as vg_open for a bad header. */
 VG_API vg_status vg_open_size(const void* blob, size_t blob_size, size_t* out_memory_size);
 
 /* Checks the blob (header, checksum, decompression, flatbuffers verifier, every index

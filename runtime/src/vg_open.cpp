@@ -39,6 +39,13 @@ constexpr uint64_t kMaxTableBytes = uint64_t(1) << 48;
 
 size_t alignUp(size_t n) { return (n + kAlign - 1) & ~(kAlign - 1); }
 
+#if VG_WITH_ZSTD
+// What the payload's zstd frames unpack to together, as they state it; ZSTD_CONTENTSIZE_ERROR
+// or _UNKNOWN (both above any real size) for bytes that are no such frames or a frame that
+// does not state its size.
+unsigned long long unpackedBytes(const void* frames, size_t size) { return ZSTD_findDecompressedSize(frames, size); }
+#endif
+
 vg_status readHeader(const void* blob, size_t blobSize, Header& h) {
     if (blob == nullptr) return VG_ERR_INVALID_ARGUMENT;
     if (blobSize < VG_CONTAINER_HEADER_SIZE) return VG_ERR_TRUNCATED;
@@ -65,9 +72,9 @@ vg_status readHeader(const void* blob, size_t blobSize, Header& h) {
     if (h.unpackedSize > SIZE_MAX - 4 * kAlign) return VG_ERR_OUT_OF_MEMORY;  // a 32-bit process
     if (!h.compressed && h.unpackedSize != h.payloadSize) return VG_ERR_CORRUPT_STRUCTURE;
 #if VG_WITH_ZSTD
-    // The frame states its size too: a header that claims more is refused before anyone
-    // sizes memory by it (the header is outside the checksum).
-    if (h.compressed && ZSTD_getFrameContentSize(p + VG_CONTAINER_HEADER_SIZE, size_t(h.payloadSize)) != h.unpackedSize)
+    // The frames state their sizes too: a header that claims more than they hold together
+    // is refused before anyone sizes memory by it (the header is outside the checksum).
+    if (h.compressed && unpackedBytes(p + VG_CONTAINER_HEADER_SIZE, size_t(h.payloadSize)) != h.unpackedSize)
         return VG_ERR_DECOMPRESSION;
 #endif
     return VG_OK;
@@ -139,7 +146,7 @@ extern "C" vg_status vg_open(const void* blob, size_t blob_size, void* memory, s
         cursor += alignUp(size_t(h.unpackedSize));
         ZSTD_DCtx* dctx = ZSTD_initStaticDCtx(cursor, decompressionContextSize());
         if (dctx == nullptr) return VG_ERR_DECOMPRESSION;
-        if (ZSTD_getFrameContentSize(payload, size_t(h.payloadSize)) != h.unpackedSize) return VG_ERR_DECOMPRESSION;
+        if (unpackedBytes(payload, size_t(h.payloadSize)) != h.unpackedSize) return VG_ERR_DECOMPRESSION;
         const size_t got = ZSTD_decompressDCtx(dctx, target, size_t(h.unpackedSize), payload, size_t(h.payloadSize));
         if (ZSTD_isError(got) || got != h.unpackedSize) return VG_ERR_DECOMPRESSION;
         unpacked = target;

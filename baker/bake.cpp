@@ -60,6 +60,11 @@ void validate(const Mesh& mesh, const BakeOptions& o) {
 
 }  // namespace
 
+int automaticLevel(bool coded, uint64_t payloadBytes) {
+    if (!coded) return 9;
+    return payloadBytes <= (uint64_t(1) << 30) ? 19 : 17;
+}
+
 std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, BakeReport& report,
                               const BakeProgress& reportProgress) {
     validate(mesh, options);
@@ -157,7 +162,8 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
         payload.bytes = std::move(buffer);
     }
     report.flatbufferBytes = payload.flatbufferSize;
-    const int level = options.compressionLevel > 0 ? options.compressionLevel : options.compact ? 19 : 9;
+    const int level = options.compressionLevel > 0 ? options.compressionLevel
+                                                   : automaticLevel(options.compact, payload.bytes.size());
     std::vector<uint8_t> blob = packContainer(std::move(payload), options.compress, options.compact, level);
     report.blobBytes = blob.size();
     if (progress) progress("writing blob", 1.0);

@@ -19,15 +19,20 @@ struct BakeOptions {
     uint64_t seed = 1;
     uint32_t marginRings = 1;     // rings of faces around a patch for its geodesics
     bool exactFirstLayer = false; // first-layer distances by exact runs (thesis) instead of composed
-    bool compress = true;         // zstd frame, else the flatbuffer as is (zero-copy)
+    bool compress = true;         // zstd frames, else the flatbuffer as is (zero-copy)
     bool compact = false;         // with compress: prediction-coded distances, ~2x smaller, ~1.6x the open time
-    // zstd level, 1-22; 0 = automatic: 19 for coded blobs (`compact`), whose residuals
-    // compress 10% better than at 9 (the frames are compressed on all threads), else 9.
+    // zstd level, 1-22; 0 = automatic (automaticLevel below).
     int compressionLevel = 0;
     uint32_t landmarks = 12;      // A* landmarks stored in the blob (0: straight-line bound only)
     bool hubLabels = false;       // hub labels for microsecond point-to-point queries (hub_labels.h)
     uint64_t maxMemoryBytes = 0;  // refuse up front / stop when a bake needs more (0: no limit)
 };
+
+// The automatic zstd level for a payload of `payloadBytes`: 9 for plain quanta, which
+// hardly compress anyway; for coded blobs 19 (igea: 10% smaller than 9, 10 s more with 2
+// threads), but 17 above 1 GiB of payload, where 19 would take 2.3x as long as 17 for 2.4%
+// (igea x16's 4.3 GB: its bake would pass 20 minutes). BENCHMARKS.md has the figures.
+int automaticLevel(bool coded, uint64_t payloadBytes);
 
 // The automatic pruning threshold (fraction of the bounding-box diagonal).
 constexpr double kDefaultDelta = 0.0;

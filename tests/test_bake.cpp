@@ -202,6 +202,9 @@ TEST_CASE("bake library: vorogeo::bake reports progress, can be cancelled, gives
     CHECK(calls == 3);
     cancel = true;
     CHECK_THROWS_AS(bake(mesh, BakeOptions(), BakeProgress(), &cancel), BakeCancelled);
+    CHECK(automaticLevel(false, 100 << 20) == 9);
+    CHECK(automaticLevel(true, 100 << 20) == 19);
+    CHECK(automaticLevel(true, uint64_t(3) << 30) == 17);
     BakeOptions bad;
     bad.compressionLevel = 99;
     CHECK_THROWS_AS(bake(mesh, bad), std::invalid_argument);

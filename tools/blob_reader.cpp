@@ -203,7 +203,7 @@ bool unpackBlob(const std::vector<uint8_t>& bytes, BlobContents& out, std::strin
     if (out.compressed) {
         const size_t n = ZSTD_decompress(all.data(), all.size(), h + VG_CONTAINER_HEADER_SIZE, payload);
         if (ZSTD_isError(n) || n != unpacked) {
-            error = std::string("zstd frame does not decompress to the stated size") +
+            error = std::string("zstd frames do not decompress to the stated size") +
                     (ZSTD_isError(n) ? std::string(": ") + ZSTD_getErrorName(n) : std::string());
             return false;
         }

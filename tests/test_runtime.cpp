@@ -580,7 +580,7 @@ TEST_CASE("runtime: every truncation and every flipped byte of a blob is rejecte
     CHECK_FALSE(openAndQuery(longer));
 }
 
-TEST_CASE("runtime: a payload in several zstd frames opens as in one; frames of another size are refused", "[runtime]") {
+TEST_CASE("runtime: a payload in several zstd frames opens as in one, frames of another size are refused", "[runtime]") {
     // The baker cuts a compressed payload into frames of VG_CONTAINER_FRAME_BYTES; here
     // frames of 4 KB, so that a small labelled blob has hundreds of them.
     const Mesh mesh = bumpyTorus(60, 30);

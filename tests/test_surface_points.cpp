@@ -200,7 +200,7 @@ TEST_CASE("points: k nearest are the k smallest distances, in order, across targ
     CHECK(std::isinf(dist2[4]));
 }
 
-TEST_CASE("points: other components are at +infinity; bad points get VG_ERR_INVALID_POINT", "[points]") {
+TEST_CASE("points: other components are at +infinity, bad points get VG_ERR_INVALID_POINT", "[points]") {
     const Baked& b = baked("two");
     RuntimeWorkspace ws(b.graph);
     const vg_graph* g = b.graph.graph();

@@ -82,7 +82,7 @@ TEST_CASE("render: panels have the requested size and follow the field", "[tools
     CHECK(two.width == 200);
 }
 
-TEST_CASE("voronoi: Poisson-disk seeds keep their distance; growing spheres give the nearest seed",
+TEST_CASE("voronoi: Poisson-disk seeds keep their distance, growing spheres give the nearest seed",
           "[tools][voronoi]") {
     const Mesh& mesh = fixture().mesh;
     double radius = 0;
@@ -192,7 +192,7 @@ TEST_CASE("vorogeo bench, render and voronoi run on a baked mesh", "[tools][cli]
     CHECK(test::runTool("bench " + mesh).status == 2);
 }
 
-TEST_CASE("vorogeo path prints, checks and draws a path; --random gives its statistics", "[tools][cli][paths]") {
+TEST_CASE("vorogeo path prints, checks and draws a path, --random gives its statistics", "[tools][cli][paths]") {
     const Fixture& f = fixture();
     const std::string mesh = test::quote(f.meshPath), blob = test::quote(f.blobPath);
     const std::string png = f.dir.file("path.png");

@@ -144,9 +144,9 @@ extern "C" vg_status vg_open(const void* blob, size_t blob_size, void* memory, s
 #if VG_WITH_ZSTD
         unsigned char* target = cursor;
         cursor += alignUp(size_t(h.unpackedSize));
+        // readHeader has checked that the frames state the unpacked size between them.
         ZSTD_DCtx* dctx = ZSTD_initStaticDCtx(cursor, decompressionContextSize());
         if (dctx == nullptr) return VG_ERR_DECOMPRESSION;
-        if (unpackedBytes(payload, size_t(h.payloadSize)) != h.unpackedSize) return VG_ERR_DECOMPRESSION;
         const size_t got = ZSTD_decompressDCtx(dctx, target, size_t(h.unpackedSize), payload, size_t(h.payloadSize));
         if (ZSTD_isError(got) || got != h.unpackedSize) return VG_ERR_DECOMPRESSION;
         unpacked = target;

@@ -22,8 +22,12 @@ namespace {
 constexpr uint32_t kNo = UINT32_MAX;
 constexpr uint32_t kNoPath = VG_CODING_NO_PATH;
 // The largest label or inner entry takes this many steps, so that the runtime's 16-bit
-// sums of a label and a distance inside a patch stay below 65535 ("no path").
-constexpr double kLargestLabelStep = 40000.0;
+// sums of a label and a distance inside a patch stay below 65535 ("no path"). A step is
+// then about the quantum of the second-layer matrices the labels are summed from (12 bits
+// per patch): finer steps only store rounding noise (igea, accurate+labels: 40,000 steps
+// gave the same golden errors, 0.0157% / 0.466%, for 15.4 more bytes per vertex), coarser
+// ones start to show (10,000: 0.0171% / 0.509%). BENCHMARKS.md, session 38.
+constexpr double kLargestLabelStep = 20000.0;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // The parts of the graph buffer the labels are made of.

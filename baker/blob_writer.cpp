@@ -17,6 +17,7 @@
 #include "parallel.h"
 #include "vorogeo_container.h"
 #include "vorogeo_generated.h"
+#include "vorogeo_topology_coding.h"
 
 namespace vorogeo {
 
@@ -100,8 +101,8 @@ void nodeEdges(const Mesh& mesh, const std::vector<uint32_t>& nodeOf, size_t nod
 }
 
 // The mesh edges between two node slots of second-layer patch m, both ways, grouped by
-// their first slot, with the length the runtime's euclidean() gives (float positions,
-// float arithmetic). nodeSlot is all -1 on entry and on return.
+// their first slot, with vg_patch_edge_length (what a reader of a coded blob computes
+// in their place). nodeSlot is all -1 on entry and on return.
 void appendPatchEdges(const PatchMatrix& m, const std::vector<uint32_t>& nodeOf,
                       const std::vector<uint32_t>& nodeVertex, const std::vector<uint32_t>& edgeBegin,
                       const std::vector<uint32_t>& edgeNeighbours, const std::vector<float>& positions,
@@ -109,13 +110,10 @@ void appendPatchEdges(const PatchMatrix& m, const std::vector<uint32_t>& nodeOf,
     for (uint32_t i = 0; i < m.nodeCount; ++i) nodeSlot[m.vertices[i]] = int32_t(i);
     for (uint32_t i = 0; i < m.nodeCount; ++i) {
         const uint32_t v = m.vertices[i], n = nodeOf[v];
-        const float* pa = &positions[3 * size_t(v)];
         for (uint32_t e = edgeBegin[n]; e < edgeBegin[n + 1]; ++e) {
             const uint32_t w = nodeVertex[edgeNeighbours[e]];
             if (nodeSlot[w] < 0) continue;
-            const float* pb = &positions[3 * size_t(w)];
-            const float dx = pa[0] - pb[0], dy = pa[1] - pb[1], dz = pa[2] - pb[2];
-            out.emplace_back(uint16_t(i), uint16_t(nodeSlot[w]), std::sqrt(dx * dx + dy * dy + dz * dz));
+            out.emplace_back(uint16_t(i), uint16_t(nodeSlot[w]), vg_patch_edge_length(positions.data(), v, w));
         }
     }
     for (uint32_t i = 0; i < m.nodeCount; ++i) nodeSlot[m.vertices[i]] = -1;

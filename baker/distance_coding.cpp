@@ -1,5 +1,6 @@
 #include "distance_coding.h"
 
+#include <cstring>
 #include <stdexcept>
 
 #include "vorogeo_container.h"
@@ -85,6 +86,16 @@ void codeDistances(std::vector<uint8_t>& payload, uint64_t flatbufferSize) {
     };
     vg_code_topology(indicesIn(g->face_vertices()), indicesIn(g->face_twin()), g->face_twin()->size(),
                      indicesIn(g->vertex_halfedge()), g->vertex_halfedge()->size(), 0);
+    // Patch edge lengths are not stored: readers compute them (vorogeo_topology_coding.h).
+    // A PatchEdge is (from: ushort, to: ushort, length: float): the length is bytes 4-7.
+    static_assert(sizeof(fb::PatchEdge) == 8, "PatchEdge layout");
+    if (g->second_edges() && g->second_edges()->size() > 0) {
+        uint8_t* edges = flatbuffer.data() + (g->second_edges()->Data() - flatbuffer.data());
+        for (uint64_t e = 0; e < g->second_edges()->size(); ++e) std::memset(edges + 8 * e + 4, 0, 4);
+    }
+    // Last: every coding above predicts from the plain positions.
+    vg_code_positions(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(positions) - flatbuffer.data()),
+                      g->positions()->size(), 0);
 }
 
 }  // namespace vorogeo

@@ -214,6 +214,11 @@ TEST_CASE("distance coding: a compact blob is coded, smaller, and opens to the s
     {
         std::vector<uint8_t> flatbuffer(plain.begin() + VG_CONTAINER_HEADER_SIZE, plain.end());
         codeDistances(flatbuffer);
+        // The patch edges keep their ends and store no length (format 11).
+        const auto* stored = fb::GetGraph(flatbuffer.data())->second_edges();
+        REQUIRE(stored != nullptr);
+        REQUIRE(stored->size() > 100);
+        for (const fb::PatchEdge* E : *stored) REQUIRE(E->length() == 0.0f);
         codedPlain = sealContainer(flatbuffer, VG_FLAG_CODED_DISTANCES, 0);
     }
     tools::RuntimeGraph reference;
@@ -233,6 +238,9 @@ TEST_CASE("distance coding: a compact blob is coded, smaller, and opens to the s
         REQUIRE(std::memcmp(got.faceVertices, want.faceVertices, 12 * size_t(want.faceCount)) == 0);
         REQUIRE(std::memcmp(got.faceTwin, want.faceTwin, 12 * size_t(want.faceCount)) == 0);
         REQUIRE(std::memcmp(got.vertexHalfedge, want.vertexHalfedge, 4 * size_t(want.vertexCount)) == 0);
+        // the patch edges' lengths, computed at open: the baker's bits
+        REQUIRE(got.secondEdgeCount == want.secondEdgeCount);
+        REQUIRE(std::memcmp(got.secondEdges, want.secondEdges, sizeof(vg::PatchEdge) * want.secondEdgeCount) == 0);
     }
     {  // the portable decoder on the real arrays, re-coded by the reference encoder
         const vg_graph& g = want;
@@ -279,6 +287,33 @@ TEST_CASE("distance coding: a coded blob with a flipped payload bit or an unknow
     tools::BlobContents c;
     CHECK_FALSE(tools::unpackBlob(unknown, c, error));
     CHECK(error.find("unknown flags") != std::string::npos);
+}
+
+TEST_CASE("distance coding: a coded blob that stores a patch edge length is refused", "[runtime][coding]") {
+    const std::vector<uint8_t> plain = bakeWith(planeGrid(12, 12, 1.0, 0.05, 3), false, false);
+    std::vector<uint8_t> flatbuffer(plain.begin() + VG_CONTAINER_HEADER_SIZE, plain.end());
+    codeDistances(flatbuffer);
+    std::string error;
+    tools::RuntimeGraph g;
+    tools::BlobContents c;
+    REQUIRE(g.open(sealContainer(flatbuffer, VG_FLAG_CODED_DISTANCES, 0), error));
+    const auto* edges = fb::GetGraph(flatbuffer.data())->second_edges();
+    REQUIRE(edges->size() > 10);
+    // The length of the middle edge, set to what it is (1.0f) and to a NaN.
+    uint8_t* length = flatbuffer.data() + (edges->Data() - flatbuffer.data()) + 8 * (edges->size() / 2) + 4;
+    for (const uint32_t bits : {0x3F800000u, 0x7FC00000u}) {
+        std::memcpy(length, &bits, 4);
+        const std::vector<uint8_t> blob = sealContainer(flatbuffer, VG_FLAG_CODED_DISTANCES, 0);
+        CHECK_FALSE(g.open(blob, error));
+        size_t need = 0;
+        REQUIRE(vg_open_size(blob.data(), blob.size(), &need) == VG_OK);
+        std::vector<uint64_t> memory(need / 8 + 1);
+        const vg_graph* graph = nullptr;
+        CHECK(vg_open(blob.data(), blob.size(), memory.data(), need, &graph) == VG_ERR_CORRUPT_CONTENT);
+        CHECK(graph == nullptr);
+        CHECK_FALSE(tools::unpackBlob(blob, c, error));
+        CHECK(error.find("patch edge length") != std::string::npos);
+    }
 }
 
 TEST_CASE("distance coding: --compact needs compression", "[runtime][coding]") {

@@ -99,6 +99,42 @@ bool decodeTopology(std::vector<uint8_t>& flatbuffer, std::string& error) {
     return true;
 }
 
+// Sets the patch edges' lengths (stored as 0 in a coded blob) from the positions of their
+// ends (schema/vorogeo_topology_coding.h), after checking the ranges it reads; the patches'
+// node slots are checked by decodeDistances before.
+bool decodePatchEdgeLengths(std::vector<uint8_t>& flatbuffer, std::string& error) {
+    const fb::Graph* g = fb::GetGraph(flatbuffer.data());
+    const auto* edges = g->second_edges();
+    const auto* patches = g->second_patches();
+    if (!edges || edges->size() == 0) return true;
+    static_assert(sizeof(fb::PatchEdge) == 8, "PatchEdge layout: from, to (ushort), length (float)");
+    uint8_t* bytes = flatbuffer.data() + (edges->Data() - flatbuffer.data());
+    for (uint32_t i = 0; i < patches->size(); ++i) {
+        const fb::PatchRecord* p = patches->Get(i);
+        const uint64_t begin = p->edge_begin(), end = i + 1 < patches->size() ? patches->Get(i + 1)->edge_begin() : edges->size();
+        if (begin > end || end > edges->size()) {
+            error = "a patch's edges lie outside their array";
+            return false;
+        }
+        const uint32_t* slots = g->slots()->data() + p->slot_begin();
+        for (uint64_t e = begin; e < end; ++e) {
+            const fb::PatchEdge* E = edges->Get(uint32_t(e));
+            if (E->from() >= p->node_count() || E->to() >= p->node_count()) {
+                error = "a patch edge's end is not a node slot of its patch";
+                return false;
+            }
+            if (E->length() != 0.0f) {
+                error = "a coded blob stores a patch edge length (readers compute them)";
+                return false;
+            }
+            const float length = vg_patch_edge_length(g->positions()->data(), g->node_vertex()->Get(slots[E->from()]),
+                                                      g->node_vertex()->Get(slots[E->to()]));
+            std::memcpy(bytes + 8 * e + 4, &length, 4);
+        }
+    }
+    return true;
+}
+
 // Decodes the distances in place (schema/vorogeo_distance_coding.h) after checking that
 // every patch's slots, slot ids and matrix lie inside their arrays; the runtime checks all
 // of that and more in vg_validate, the tools only what the decoder reads.
@@ -110,6 +146,8 @@ bool decodeDistances(BlobContents& blob, std::string& error) {
         error = "coded distances without the arrays they are decoded from";
         return false;
     }
+    // The positions first: the other arrays are predicted from them.
+    vg_code_positions(flatbuffer.data() + (g->positions()->Data() - flatbuffer.data()), g->positions()->size(), 1);
     const uint64_t vertices = g->positions()->size() / 3, nodes = g->node_vertex()->size();
     const uint64_t slotCount = g->slots()->size();
     for (uint32_t n : *g->node_vertex())
@@ -146,7 +184,7 @@ bool decodeDistances(BlobContents& blob, std::string& error) {
     };
     return decodeLayer(g->second_patches(), g->second_distances(), false) &&
            decodeLayer(g->first_patches(), g->first_distances(), true) && decodeLabels(blob, error) &&
-           decodeTopology(flatbuffer, error);
+           decodeTopology(flatbuffer, error) && decodePatchEdgeLengths(flatbuffer, error);
 }
 
 }  // namespace

@@ -178,10 +178,10 @@ bool exitListsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
     return true;
 }
 
-// A coded blob's distance and topology arrays are decoded where they lie, after (or, for
-// the topology, while) the other arrays are checked. The flatbuffers verifier lets two
-// vectors share bytes, so a crafted blob could make decoding rewrite indices that were
-// already found in range: each decoded array must share no byte with any array the
+// A coded blob's distance, topology and position arrays and patch edge lengths are decoded
+// where they lie, after (or, for all but the distances, while) the other arrays are
+// checked. The flatbuffers verifier lets two vectors share bytes, so a crafted blob could
+// make decoding rewrite indices that were already found in range: each decoded array must share no byte with any array the
 // runtime reads. Everything a query reads is listed here.
 bool decodedArraysApart(const vorogeo::fb::Graph* g) {
     struct Range {
@@ -202,13 +202,14 @@ bool decodedArraysApart(const vorogeo::fb::Graph* g) {
         all[n++] = Range{b, b + uint64_t(v->size()) * sizeof(*v->data())};
     };
     // The decoded ones first.
+    add(g->positions());
     add(g->second_distances());
     add(g->first_distances());
     add(g->face_vertices());
     add(g->face_twin());
     add(g->vertex_halfedge());
+    add(g->second_edges());  // its lengths
     const uint32_t decoded = n;
-    add(g->positions());
     add(g->vertex_patch());
     add(g->vertex_slot());
     add(g->face_patch());
@@ -226,7 +227,6 @@ bool decodedArraysApart(const vorogeo::fb::Graph* g) {
     add(g->second_patches());
     add(g->first_patches());
     add(g->slots());
-    add(g->second_edges());
     add(g->hub_tree());
     add(g->hub_first_leaf());
     add(g->node_hub());
@@ -427,6 +427,7 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, const Tabl
     for (uint64_t k = 0; k < K; ++k)
         if (!finite(out.landmarkScale[k]) || out.landmarkScale[k] < 0.0f || g->landmark_vertex()->Get(k) >= V)
             return VG_ERR_CORRUPT_CONTENT;
+    if (codedTopology) vg_code_positions(const_cast<float*>(out.positions), 3 * V, 1);
     for (uint64_t i = 0; i < 3 * V; ++i)
         if (!finite(out.positions[i])) return VG_ERR_CORRUPT_CONTENT;
 
@@ -446,7 +447,8 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, const Tabl
         return VG_ERR_CORRUPT_CONTENT;
 
     // Patch edges: each patch's range in order, both ends node slots of that patch, a
-    // length that unfolds (finite, not negative).
+    // length that unfolds (finite, not negative); in a coded blob 0, the length being
+    // computed below (vorogeo_topology_coding.h).
     for (uint64_t i = 0; i < S1; ++i)
         if (out.first[i].edgeBegin != 0) return VG_ERR_CORRUPT_CONTENT;
     for (uint32_t i = 0; i < S2; ++i) {
@@ -455,7 +457,7 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, const Tabl
         for (uint32_t e = begin; e < end; ++e) {
             const PatchEdge& E = out.secondEdges[e];
             if (E.from >= out.second[i].nodeCount || E.to >= out.second[i].nodeCount || E.from == E.to ||
-                !finite(E.length) || E.length < 0.0f)
+                (codedTopology ? E.length != 0.0f : !finite(E.length) || E.length < 0.0f))
                 return VG_ERR_CORRUPT_CONTENT;
         }
     }
@@ -489,9 +491,20 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, const Tabl
     for (uint64_t n = 0; n < N; ++n)
         if (out.vertexPatch[out.nodeVertex[n]] == kNone) return VG_ERR_CORRUPT_CONTENT;
 
-    if (codedTopology)
+    if (codedTopology) {
         vg_code_topology(const_cast<uint32_t*>(out.faceVertices), const_cast<uint32_t*>(out.faceTwin),
                          3 * uint64_t(out.faceCount), const_cast<uint32_t*>(out.vertexHalfedge), V, 1);
+        // The ends are node slots (checked above) of nodes whose vertices are in range, at
+        // finite positions: the lengths are finite and not negative.
+        PatchEdge* edges = const_cast<PatchEdge*>(out.secondEdges);
+        for (uint32_t i = 0; i < S2; ++i) {
+            const Patch& p = out.second[i];
+            const uint32_t* slots = out.slots + p.slotBegin;
+            for (uint32_t e = p.edgeBegin, end = patchEdgesEnd(out, i); e < end; ++e)
+                edges[e].length = vg_patch_edge_length(out.positions, out.nodeVertex[slots[edges[e].from]],
+                                                       out.nodeVertex[slots[edges[e].to]]);
+        }
+    }
     if (!facesValid(out)) return VG_ERR_CORRUPT_CONTENT;
     if (!hubsValid(g, size, tables, out)) return VG_ERR_CORRUPT_CONTENT;
 

@@ -3,6 +3,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "vorogeo_coded_sequences.h"
 #include "vorogeo_container.h"
 #include "vorogeo_distance_coding.h"
 #include "vorogeo_label_coding.h"
@@ -93,7 +94,9 @@ void codeDistances(std::vector<uint8_t>& payload, uint64_t flatbufferSize) {
         uint8_t* edges = flatbuffer.data() + (g->second_edges()->Data() - flatbuffer.data());
         for (uint64_t e = 0; e < g->second_edges()->size(); ++e) std::memset(edges + 8 * e + 4, 0, 4);
     }
-    // Last: every coding above predicts from the plain positions.
+    // Last: every coding above predicts from the plain positions and reads the plain
+    // indices.
+    forEachCodedSequence(g, [&](const flatbuffers::Vector<uint32_t>* v) { vg_code_sequence(indicesIn(v), v->size(), 0); });
     vg_code_positions(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(positions) - flatbuffer.data()),
                       g->positions()->size(), 0);
 }

@@ -17,6 +17,11 @@
  *   vertex_halfedge[v] -> zigzag(vertex_halfedge[v] - 6 v), 0xFFFFFFFF (unused vertex) kept.
  * A valid index is below 2^31, so no coded difference is 0xFFFFFFFF.
  *
+ * Sequences (format 11): node_vertex, slots, node_edge, the offsets node_second_begin,
+ * node_first_begin, node_edge_begin and (with hub labels) hub_exit_list_begin are coded
+ * as face_vertices is (vg_code_sequence): increasing or locally close indices, whose
+ * differences compress 2-30x (igea: 6.1 -> 2.4 bytes per vertex together).
+ *
  * Positions (format 11): vg_code_positions below.
  *
  * Patch edge lengths (format 11): in such a blob every second_edges entry's length is
@@ -87,19 +92,26 @@ static inline float vg_patch_edge_length(const float* positions, uint32_t a, uin
 #endif
 }
 
+/* Codes (decode = 0) or decodes (decode = 1) n indices in place: each becomes the
+ * zigzag-coded difference from the one before (0 before the first). */
+static inline void vg_code_sequence(uint32_t* a, uint64_t n, int decode) {
+    uint64_t i;
+    if (decode) {
+        uint32_t previous = 0;
+        for (i = 0; i < n; ++i) {
+            previous += vg_topology_unzigzag(a[i]);
+            a[i] = previous;
+        }
+    } else {
+        for (i = n; i-- > 0;) a[i] = vg_topology_zigzag(a[i] - (i ? a[i - 1] : 0u));
+    }
+}
+
 /* Codes (decode = 0) or decodes (decode = 1) the three arrays in place. */
 static inline void vg_code_topology(uint32_t* face_vertices, uint32_t* face_twin, uint64_t halfedges,
                                     uint32_t* vertex_halfedge, uint64_t vertices, int decode) {
     uint64_t i;
-    if (decode) {
-        uint32_t previous = 0;
-        for (i = 0; i < halfedges; ++i) {
-            previous += vg_topology_unzigzag(face_vertices[i]);
-            face_vertices[i] = previous;
-        }
-    } else {
-        for (i = halfedges; i-- > 0;) face_vertices[i] = vg_topology_zigzag(face_vertices[i] - (i ? face_vertices[i - 1] : 0u));
-    }
+    vg_code_sequence(face_vertices, halfedges, decode);
     for (i = 0; i < halfedges; ++i) {
         const uint32_t x = face_twin[i];
         if (x == VG_TOPOLOGY_NONE) continue;

@@ -241,6 +241,17 @@ TEST_CASE("distance coding: a compact blob is coded, smaller, and opens to the s
         // the patch edges' lengths, computed at open: the baker's bits
         REQUIRE(got.secondEdgeCount == want.secondEdgeCount);
         REQUIRE(std::memcmp(got.secondEdges, want.secondEdges, sizeof(vg::PatchEdge) * want.secondEdgeCount) == 0);
+        // the positions and the index sequences (vg_code_positions, vg_code_sequence)
+        const uint32_t N = want.nodeCount;
+        REQUIRE(got.nodeCount == N);
+        REQUIRE(std::memcmp(got.positions, want.positions, 12 * size_t(want.vertexCount)) == 0);
+        REQUIRE(std::memcmp(got.nodeVertex, want.nodeVertex, 4 * size_t(N)) == 0);
+        REQUIRE(std::memcmp(got.nodeSecondBegin, want.nodeSecondBegin, 4 * size_t(N + 1)) == 0);
+        REQUIRE(std::memcmp(got.nodeFirstBegin, want.nodeFirstBegin, 4 * size_t(N + 1)) == 0);
+        REQUIRE(std::memcmp(got.nodeEdgeBegin, want.nodeEdgeBegin, 4 * size_t(N + 1)) == 0);
+        REQUIRE(std::memcmp(got.nodeEdge, want.nodeEdge, 4 * size_t(want.nodeEdgeBegin[N])) == 0);
+        const vg::Patch& last = want.first[want.firstCount - 1];
+        REQUIRE(std::memcmp(got.slots, want.slots, 4 * size_t(last.slotBegin + last.slotCount)) == 0);
     }
     {  // the portable decoder on the real arrays, re-coded by the reference encoder
         const vg_graph& g = want;

@@ -6,6 +6,7 @@
 
 #include <zstd.h>
 
+#include "vorogeo_coded_sequences.h"
 #include "vorogeo_container.h"
 #include "vorogeo_distance_coding.h"
 #include "vorogeo_label_coding.h"
@@ -146,8 +147,11 @@ bool decodeDistances(BlobContents& blob, std::string& error) {
         error = "coded distances without the arrays they are decoded from";
         return false;
     }
-    // The positions first: the other arrays are predicted from them.
+    // The positions and index sequences first: the other arrays are predicted from them.
     vg_code_positions(flatbuffer.data() + (g->positions()->Data() - flatbuffer.data()), g->positions()->size(), 1);
+    forEachCodedSequence(g, [&](const flatbuffers::Vector<uint32_t>* v) {
+        vg_code_sequence(reinterpret_cast<uint32_t*>(flatbuffer.data() + (v->Data() - flatbuffer.data())), v->size(), 1);
+    });
     const uint64_t vertices = g->positions()->size() / 3, nodes = g->node_vertex()->size();
     const uint64_t slotCount = g->slots()->size();
     for (uint32_t n : *g->node_vertex())

@@ -6,6 +6,7 @@
 #include "vg_validate.h"
 #include "vorogeo_container.h"
 
+#include "vorogeo_coded_sequences.h"
 #include "vorogeo_topology_coding.h"
 
 #include "vorogeo_generated.h"
@@ -178,8 +179,8 @@ bool exitListsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
     return true;
 }
 
-// A coded blob's distance, topology and position arrays and patch edge lengths are decoded
-// where they lie, after (or, for all but the distances, while) the other arrays are
+// A coded blob's distance, topology, sequence and position arrays and patch edge lengths
+// are decoded where they lie, after (or, for all but the distances, while) the other arrays are
 // checked. The flatbuffers verifier lets two vectors share bytes, so a crafted blob could
 // make decoding rewrite indices that were already found in range: each decoded array must share no byte with any array the
 // runtime reads. Everything a query reads is listed here.
@@ -209,24 +210,19 @@ bool decodedArraysApart(const vorogeo::fb::Graph* g) {
     add(g->face_twin());
     add(g->vertex_halfedge());
     add(g->second_edges());  // its lengths
+    vorogeo::forEachCodedSequence(g, add);
     const uint32_t decoded = n;
     add(g->vertex_patch());
     add(g->vertex_slot());
     add(g->face_patch());
-    add(g->node_vertex());
     add(g->node_flags());
-    add(g->node_second_begin());
     add(g->node_second());
-    add(g->node_first_begin());
     add(g->node_first());
-    add(g->node_edge_begin());
-    add(g->node_edge());
     add(g->landmark_vertex());
     add(g->landmark_scale());
     add(g->node_landmarks());
     add(g->second_patches());
     add(g->first_patches());
-    add(g->slots());
     add(g->hub_tree());
     add(g->hub_first_leaf());
     add(g->node_hub());
@@ -236,7 +232,6 @@ bool decodedArraysApart(const vorogeo::fb::Graph* g) {
     add(g->hub_inner_matrix_begin());
     add(g->hub_block_bounds());
     add(g->hub_exit_patch_begin());
-    add(g->hub_exit_list_begin());
     add(g->hub_exit_lists());
     if (full) return false;
     for (uint32_t i = 0; i < decoded; ++i)
@@ -358,7 +353,13 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, const Tabl
     flatbuffers::Verifier verifier(flatbuffer, size);
     if (!vorogeo::fb::VerifyGraphBuffer(verifier)) return VG_ERR_CORRUPT_STRUCTURE;
     const vorogeo::fb::Graph* g = vorogeo::fb::GetGraph(flatbuffer);
-    if (codedTopology && !decodedArraysApart(g)) return VG_ERR_CORRUPT_STRUCTURE;
+    if (codedTopology) {
+        if (!decodedArraysApart(g)) return VG_ERR_CORRUPT_STRUCTURE;
+        // Any bytes decode to some indices, which are checked below as in an uncoded blob.
+        vorogeo::forEachCodedSequence(g, [](const flatbuffers::Vector<uint32_t>* v) {
+            vg_code_sequence(const_cast<uint32_t*>(v->data()), v->size(), 1);
+        });
+    }
 
     const uint64_t V = g->vertex_count();
     const uint64_t N = count(g->node_vertex());

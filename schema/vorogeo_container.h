@@ -5,7 +5,9 @@
  *        8     4  format version (little-endian uint32) = VG_FORMAT_VERSION
  *       12     4  flags: bit 0 = payload is zstd frames; bit 1 = the flatbuffer's distance
  *                  matrices (vorogeo_distance_coding.h) and hub-label tables
- *                  (vorogeo_label_coding.h) are prediction-coded; other bits 0
+ *                  (vorogeo_label_coding.h) are prediction-coded, its topology, positions
+ *                  and index sequences delta-coded, its patch edge lengths left to the
+ *                  readers (vorogeo_topology_coding.h); other bits 0
  *       16     8  payload size in bytes (what follows the header)
  *       24     8  flatbuffer size in bytes
  *       32     8  table bytes: the hub-label tables after the flatbuffer (0 without labels)

@@ -54,6 +54,9 @@ void codeLabels(std::vector<uint8_t>& payload, uint64_t flatbufferSize, const fb
     vg_label_planes(reinterpret_cast<unsigned char*>(inner), g->hub_inner_count(), planeScratch.data(), 1);
 }
 
+// Entries a packed array of `bytes` bytes holds (two per three bytes).
+uint64_t entriesIn(uint64_t bytes) { return (bytes / 3) * 2 + (bytes % 3 == 2 ? 1 : 0); }
+
 }  // namespace
 
 void codeDistances(std::vector<uint8_t>& payload, uint64_t flatbufferSize) {
@@ -81,6 +84,10 @@ void codeDistances(std::vector<uint8_t>& payload, uint64_t flatbufferSize) {
         const vg_coding_slots s{positions, slots + p->slot_begin(), nodeVertex, p->slot_count()};
         vg_code_first_matrix(firstPlain.data(), first, p->matrix_begin(), p->slot_count(), p->scale(), &s, 0);
     }
+    // Both arrays' codes in byte planes (vorogeo_distance_coding.h).
+    std::vector<uint8_t> scratch(VG_CODING_PLANE_SCRATCH);
+    vg_code_planes(second, entriesIn(g->second_distances()->size()), scratch.data(), 0);
+    vg_code_planes(first, entriesIn(g->first_distances()->size()), scratch.data(), 0);
     codeLabels(payload, flatbufferSize, g);
     auto indicesIn = [&](const flatbuffers::Vector<uint32_t>* v) {
         return reinterpret_cast<uint32_t*>(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(v->data()) - flatbuffer.data()));

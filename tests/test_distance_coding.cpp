@@ -91,6 +91,10 @@ RandomGraph randomGraph(std::mt19937& rng) {
     r.firstBytes.resize((3 * firstEntries + 1) / 2);
     for (uint8_t& b : r.secondBytes) b = uint8_t(rng());
     for (uint8_t& b : r.firstBytes) b = uint8_t(rng());
+    // After an odd number of entries the last byte's high nibble is no entry's: 0, as the
+    // baker writes it and the byte planes' decoder leaves it.
+    if (secondEntries % 2 == 1) r.secondBytes.back() &= 0x0F;
+    if (firstEntries % 2 == 1) r.firstBytes.back() &= 0x0F;
     r.graph.vertexCount = V;
     r.graph.nodeCount = N;
     r.graph.positions = r.positions.data();
@@ -109,6 +113,8 @@ RandomGraph randomGraph(std::mt19937& rng) {
 
 // The reference encoder over a graph's distance arrays (what the baker's codeDistances
 // does to a flatbuffer): second and first get the codes of plainSecond and plainFirst.
+uint64_t packedEntries(uint64_t bytes) { return (bytes / 3) * 2 + (bytes % 3 == 2 ? 1 : 0); }
+
 void encode(const vg_graph& g, const std::vector<uint8_t>& plainSecond, const std::vector<uint8_t>& plainFirst,
             std::vector<uint8_t>& second, std::vector<uint8_t>& first) {
     second = plainSecond;
@@ -123,6 +129,9 @@ void encode(const vg_graph& g, const std::vector<uint8_t>& plainSecond, const st
         const vg_coding_slots s{g.positions, g.slots + p.slotBegin, g.nodeVertex, p.slotCount};
         vg_code_first_matrix(plainFirst.data(), first.data(), p.matrixBegin, p.slotCount, p.scale, &s, 0);
     }
+    std::vector<unsigned char> scratch(VG_CODING_PLANE_SCRATCH);
+    vg_code_planes(second.data(), packedEntries(second.size()), scratch.data(), 0);
+    vg_code_planes(first.data(), packedEntries(first.size()), scratch.data(), 0);
 }
 
 // Random pairs (from `seed`) answered by two opened blobs: the same bits.
@@ -187,6 +196,40 @@ TEST_CASE("distance coding: decode(encode(q)) = q for any bytes and patch shapes
             REQUIRE(s1 == r.firstBytes);
         }
     }
+}
+
+TEST_CASE("distance coding: byte planes give back any packed codes, over several chunks", "[runtime][coding]") {
+    std::mt19937 rng(5);
+    std::vector<unsigned char> scratch(VG_CODING_PLANE_SCRATCH);
+    const uint64_t C = VG_CODING_PLANE_ENTRIES;
+    for (const uint64_t entries : {uint64_t(0), uint64_t(1), uint64_t(2), uint64_t(7), C - 1, C, C + 1, 2 * C + 3}) {
+        for (const uint64_t spare : {uint64_t(0), uint64_t(1)}) {  // a byte after the last entry, untouched
+            if (spare && entries % 2 == 1) continue;  // that byte would hold one more entry
+            const uint64_t bytes = (3 * entries + 1) / 2 + spare;
+            std::vector<unsigned char> plain(bytes);
+            for (unsigned char& b : plain) b = uint8_t(rng());
+            // Codes near 0 either way, as in a blob, and some anywhere.
+            for (uint64_t k = 0; k < entries; ++k)
+                vg_coding_set(plain.data(), k, rng() % 4 == 0 ? rng() % 4096 : (4096 + rng() % 21 - 10) % 4096);
+            if (entries % 2 == 1) plain[(3 * entries + 1) / 2 - 1] &= 0x0F;  // the nibble of no entry: 0
+            INFO(entries << " entries, " << bytes << " bytes");
+            REQUIRE(packedEntries(bytes) == entries);
+            std::vector<unsigned char> coded = plain;
+            vg_code_planes(coded.data(), entries, scratch.data(), 0);
+            if (entries >= 7) CHECK(coded != plain);
+            if (spare) CHECK(coded.back() == plain.back());
+            // The high plane of a chunk's small codes is mostly zeros (so zstd takes it cheaply).
+            vg_code_planes(coded.data(), entries, scratch.data(), 1);
+            REQUIRE(coded == plain);
+        }
+    }
+    // zigzag on its own: 0 -> 0, +1 -> 2, -1 (4095) -> 1, and both ends.
+    CHECK(vg_coding_zigzag(0) == 0);
+    CHECK(vg_coding_zigzag(1) == 2);
+    CHECK(vg_coding_zigzag(4095) == 1);
+    CHECK(vg_coding_zigzag(2047) == 4094);
+    CHECK(vg_coding_zigzag(2048) == 4095);
+    for (uint32_t c = 0; c < 4096; ++c) REQUIRE(vg_coding_unzigzag(vg_coding_zigzag(c)) == c);
 }
 
 TEST_CASE("distance coding: a compact blob is coded, smaller, and opens to the same quanta and answers",

@@ -164,6 +164,8 @@ bool decodeDistances(BlobContents& blob, std::string& error) {
                            bool firstLayer) {
         uint8_t* packed = bytesOf(array);
         const uint64_t capacity = (array->size() / 3) * 2 + (array->size() % 3 == 2 ? 1 : 0);
+        std::vector<unsigned char> planeScratch(VG_CODING_PLANE_SCRATCH);
+        vg_code_planes(packed, capacity, planeScratch.data(), 1);
         for (const fb::PatchRecord* p : *patches) {
             const uint64_t S = p->slot_count(), n = p->node_count();
             const uint64_t entries = firstLayer ? S * S : n * S + (S - n) * (S > n ? S - n - 1 : 0) / 2;

@@ -31,6 +31,9 @@ struct Scratch {
     uint16_t* tile;        // kTileRows x kTile: rows' entries in the current columns
 };
 
+// Entries a packed array of `bytes` bytes holds (two per three bytes).
+inline uint64_t packedEntries(uint64_t bytes) { return (bytes / 3) * 2 + (bytes % 3 == 2 ? 1 : 0); }
+
 Scratch carve(void* memory) {
     float* f = static_cast<float*>(memory);
     const uint32_t n = kMaxSlots + kPad;
@@ -66,8 +69,9 @@ namespace avx2 {
 #endif
 
 size_t decodeScratchSize() {
-    return 3 * size_t(kMaxSlots + kPad) * sizeof(float) + size_t(kMaxSlots + kPad) * sizeof(uint16_t) +
-           size_t(kTileRows) * kTile * sizeof(uint16_t);
+    const size_t carved = 3 * size_t(kMaxSlots + kPad) * sizeof(float) + size_t(kMaxSlots + kPad) * sizeof(uint16_t) +
+                          size_t(kTileRows) * kTile * sizeof(uint16_t);
+    return carved > VG_CODING_PLANE_SCRATCH ? carved : VG_CODING_PLANE_SCRATCH;  // planes first, then the carved arrays
 }
 
 void predictRow(bool useAvx2, const float* x, const float* y, const float* z, uint32_t i, uint32_t j0, uint32_t j1,

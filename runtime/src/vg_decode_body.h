@@ -149,10 +149,13 @@ inline void decodeBlock(uint8_t* packed, const uint8_t* end, uint64_t begin, uin
 }
 
 inline void decodeAll(const vg_graph& g, void* scratch) {
-    const Scratch s = carve(scratch);
     // The arrays are the caller's memory (a decompressed or copied flatbuffer).
     uint8_t* second = const_cast<uint8_t*>(g.secondDistances);
     uint8_t* first = const_cast<uint8_t*>(g.firstDistances);
+    // Their byte planes back to packed codes first, a chunk at a time through the scratch.
+    vg_code_planes(second, packedEntries(uint64_t(g.secondDistancesEnd - second)), static_cast<uint8_t*>(scratch), 1);
+    vg_code_planes(first, packedEntries(uint64_t(g.firstDistancesEnd - first)), static_cast<uint8_t*>(scratch), 1);
+    const Scratch s = carve(scratch);
     for (uint32_t pi = 0; pi < g.secondCount; ++pi) {
         const Patch& p = g.second[pi];
         const uint32_t S = p.slotCount, n = p.nodeCount;

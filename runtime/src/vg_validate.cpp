@@ -180,10 +180,11 @@ bool exitListsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
 }
 
 // A coded blob's distance, topology, sequence and position arrays and patch edge lengths
-// are decoded where they lie, after (or, for all but the distances, while) the other arrays are
-// checked. The flatbuffers verifier lets two vectors share bytes, so a crafted blob could
-// make decoding rewrite indices that were already found in range: each decoded array must share no byte with any array the
-// runtime reads. Everything a query reads is listed here.
+// are decoded where they lie, after (or, for all but the distances, while) the other
+// arrays are checked. The flatbuffers verifier lets two vectors share bytes, so a crafted
+// blob could make decoding rewrite indices that were already found in range: each decoded
+// array must share no byte with any array the runtime reads. Everything a query reads is
+// listed here.
 bool decodedArraysApart(const vorogeo::fb::Graph* g) {
     struct Range {
         const uint8_t* begin;

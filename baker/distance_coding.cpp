@@ -54,9 +54,6 @@ void codeLabels(std::vector<uint8_t>& payload, uint64_t flatbufferSize, const fb
     vg_label_planes(reinterpret_cast<unsigned char*>(inner), g->hub_inner_count(), planeScratch.data(), 1);
 }
 
-// Entries a packed array of `bytes` bytes holds (two per three bytes).
-uint64_t entriesIn(uint64_t bytes) { return (bytes / 3) * 2 + (bytes % 3 == 2 ? 1 : 0); }
-
 }  // namespace
 
 void codeDistances(std::vector<uint8_t>& payload, uint64_t flatbufferSize) {
@@ -86,8 +83,8 @@ void codeDistances(std::vector<uint8_t>& payload, uint64_t flatbufferSize) {
     }
     // Both arrays' codes in byte planes (vorogeo_distance_coding.h).
     std::vector<uint8_t> scratch(VG_CODING_PLANE_SCRATCH);
-    vg_code_planes(second, entriesIn(g->second_distances()->size()), scratch.data(), 0);
-    vg_code_planes(first, entriesIn(g->first_distances()->size()), scratch.data(), 0);
+    vg_code_planes(second, vg_coding_entries(g->second_distances()->size()), scratch.data(), 0);
+    vg_code_planes(first, vg_coding_entries(g->first_distances()->size()), scratch.data(), 0);
     codeLabels(payload, flatbufferSize, g);
     auto indicesIn = [&](const flatbuffers::Vector<uint32_t>* v) {
         return reinterpret_cast<uint32_t*>(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(v->data()) - flatbuffer.data()));
@@ -95,11 +92,11 @@ void codeDistances(std::vector<uint8_t>& payload, uint64_t flatbufferSize) {
     vg_code_topology(indicesIn(g->face_vertices()), indicesIn(g->face_twin()), g->face_twin()->size(),
                      indicesIn(g->vertex_halfedge()), g->vertex_halfedge()->size(), 0);
     // Patch edge lengths are not stored: readers compute them (vorogeo_topology_coding.h).
-    // A PatchEdge is (from: ushort, to: ushort, length: float): the length is bytes 4-7.
-    static_assert(sizeof(fb::PatchEdge) == 8, "PatchEdge layout");
+    static_assert(sizeof(fb::PatchEdge) == VG_PATCH_EDGE_BYTES, "PatchEdge layout");
     if (g->second_edges() && g->second_edges()->size() > 0) {
         uint8_t* edges = flatbuffer.data() + (g->second_edges()->Data() - flatbuffer.data());
-        for (uint64_t e = 0; e < g->second_edges()->size(); ++e) std::memset(edges + 8 * e + 4, 0, 4);
+        for (uint64_t e = 0; e < g->second_edges()->size(); ++e)
+            std::memset(edges + VG_PATCH_EDGE_BYTES * e + VG_PATCH_EDGE_LENGTH_AT, 0, sizeof(float));
     }
     // Last: every coding above predicts from the plain positions and reads the plain
     // indices.

@@ -45,6 +45,9 @@ static inline uint32_t vg_predicted_quantum(const float* a, const float* b, floa
     return (uint32_t)(int32_t)(x + 0.5f);
 }
 
+/* Entries a packed 12-bit array of `bytes` bytes holds (two per three bytes). */
+static inline uint64_t vg_coding_entries(uint64_t bytes) { return (bytes / 3) * 2 + (bytes % 3 == 2 ? 1 : 0); }
+
 /* Entry k of a packed 12-bit array (two per three bytes, see schema/vorogeo.fbs). */
 static inline uint32_t vg_coding_get(const unsigned char* packed, uint64_t k) {
     const unsigned char* p = packed + ((3 * k) >> 1);

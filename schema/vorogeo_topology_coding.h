@@ -40,6 +40,11 @@
 
 #define VG_TOPOLOGY_NONE 0xFFFFFFFFu
 
+/* A second_edges entry (schema/vorogeo.fbs struct PatchEdge: from, to as ushort, length
+ * as float): its bytes, and where its length lies among them. */
+#define VG_PATCH_EDGE_BYTES 8u
+#define VG_PATCH_EDGE_LENGTH_AT 4u
+
 static inline uint32_t vg_topology_zigzag(uint32_t difference) {
     return (difference << 1) ^ (0u - (difference >> 31));
 }

@@ -113,8 +113,6 @@ RandomGraph randomGraph(std::mt19937& rng) {
 
 // The reference encoder over a graph's distance arrays (what the baker's codeDistances
 // does to a flatbuffer): second and first get the codes of plainSecond and plainFirst.
-uint64_t packedEntries(uint64_t bytes) { return (bytes / 3) * 2 + (bytes % 3 == 2 ? 1 : 0); }
-
 void encode(const vg_graph& g, const std::vector<uint8_t>& plainSecond, const std::vector<uint8_t>& plainFirst,
             std::vector<uint8_t>& second, std::vector<uint8_t>& first) {
     second = plainSecond;
@@ -130,8 +128,8 @@ void encode(const vg_graph& g, const std::vector<uint8_t>& plainSecond, const st
         vg_code_first_matrix(plainFirst.data(), first.data(), p.matrixBegin, p.slotCount, p.scale, &s, 0);
     }
     std::vector<unsigned char> scratch(VG_CODING_PLANE_SCRATCH);
-    vg_code_planes(second.data(), packedEntries(second.size()), scratch.data(), 0);
-    vg_code_planes(first.data(), packedEntries(first.size()), scratch.data(), 0);
+    vg_code_planes(second.data(), vg_coding_entries(second.size()), scratch.data(), 0);
+    vg_code_planes(first.data(), vg_coding_entries(first.size()), scratch.data(), 0);
 }
 
 // Random pairs (from `seed`) answered by two opened blobs: the same bits.
@@ -213,7 +211,7 @@ TEST_CASE("distance coding: byte planes give back any packed codes, over several
                 vg_coding_set(plain.data(), k, rng() % 4 == 0 ? rng() % 4096 : (4096 + rng() % 21 - 10) % 4096);
             if (entries % 2 == 1) plain[(3 * entries + 1) / 2 - 1] &= 0x0F;  // the nibble of no entry: 0
             INFO(entries << " entries, " << bytes << " bytes");
-            REQUIRE(packedEntries(bytes) == entries);
+            REQUIRE(vg_coding_entries(bytes) == entries);
             std::vector<unsigned char> coded = plain;
             vg_code_planes(coded.data(), entries, scratch.data(), 0);
             if (entries >= 7) CHECK(coded != plain);
@@ -358,7 +356,7 @@ TEST_CASE("distance coding: a coded blob that stores a patch edge length is refu
     const auto* edges = fb::GetGraph(flatbuffer.data())->second_edges();
     REQUIRE(edges->size() > 10);
     // The length of the middle edge, set to a plausible length (1.0f) and to a NaN.
-    uint8_t* length = flatbuffer.data() + (edges->Data() - flatbuffer.data()) + 8 * (edges->size() / 2) + 4;
+    uint8_t* length = flatbuffer.data() + (edges->Data() - flatbuffer.data()) + VG_PATCH_EDGE_BYTES * (edges->size() / 2) + VG_PATCH_EDGE_LENGTH_AT;
     for (const uint32_t bits : {0x3F800000u, 0x7FC00000u}) {
         std::memcpy(length, &bits, 4);
         const std::vector<uint8_t> blob = sealContainer(flatbuffer, VG_FLAG_CODED_DISTANCES, 0);

@@ -108,7 +108,7 @@ bool decodePatchEdgeLengths(std::vector<uint8_t>& flatbuffer, std::string& error
     const auto* edges = g->second_edges();
     const auto* patches = g->second_patches();
     if (!edges || edges->size() == 0) return true;
-    static_assert(sizeof(fb::PatchEdge) == 8, "PatchEdge layout: from, to (ushort), length (float)");
+    static_assert(sizeof(fb::PatchEdge) == VG_PATCH_EDGE_BYTES, "PatchEdge layout");
     uint8_t* bytes = flatbuffer.data() + (edges->Data() - flatbuffer.data());
     for (uint32_t i = 0; i < patches->size(); ++i) {
         const fb::PatchRecord* p = patches->Get(i);
@@ -130,7 +130,7 @@ bool decodePatchEdgeLengths(std::vector<uint8_t>& flatbuffer, std::string& error
             }
             const float length = vg_patch_edge_length(g->positions()->data(), g->node_vertex()->Get(slots[E->from()]),
                                                       g->node_vertex()->Get(slots[E->to()]));
-            std::memcpy(bytes + 8 * e + 4, &length, 4);
+            std::memcpy(bytes + VG_PATCH_EDGE_BYTES * e + VG_PATCH_EDGE_LENGTH_AT, &length, sizeof length);
         }
     }
     return true;
@@ -163,7 +163,7 @@ bool decodeDistances(BlobContents& blob, std::string& error) {
     auto decodeLayer = [&](const flatbuffers::Vector<const fb::PatchRecord*>* patches, const flatbuffers::Vector<uint8_t>* array,
                            bool firstLayer) {
         uint8_t* packed = bytesOf(array);
-        const uint64_t capacity = (array->size() / 3) * 2 + (array->size() % 3 == 2 ? 1 : 0);
+        const uint64_t capacity = vg_coding_entries(array->size());
         std::vector<unsigned char> planeScratch(VG_CODING_PLANE_SCRATCH);
         vg_code_planes(packed, capacity, planeScratch.data(), 1);
         for (const fb::PatchRecord* p : *patches) {

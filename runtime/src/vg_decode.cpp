@@ -31,9 +31,6 @@ struct Scratch {
     uint16_t* tile;        // kTileRows x kTile: rows' entries in the current columns
 };
 
-// Entries a packed array of `bytes` bytes holds (two per three bytes).
-inline uint64_t packedEntries(uint64_t bytes) { return (bytes / 3) * 2 + (bytes % 3 == 2 ? 1 : 0); }
-
 Scratch carve(void* memory) {
     float* f = static_cast<float*>(memory);
     const uint32_t n = kMaxSlots + kPad;

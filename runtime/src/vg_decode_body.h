@@ -153,8 +153,8 @@ inline void decodeAll(const vg_graph& g, void* scratch) {
     uint8_t* second = const_cast<uint8_t*>(g.secondDistances);
     uint8_t* first = const_cast<uint8_t*>(g.firstDistances);
     // Their byte planes back to packed codes first, a chunk at a time through the scratch.
-    vg_code_planes(second, packedEntries(uint64_t(g.secondDistancesEnd - second)), static_cast<uint8_t*>(scratch), 1);
-    vg_code_planes(first, packedEntries(uint64_t(g.firstDistancesEnd - first)), static_cast<uint8_t*>(scratch), 1);
+    vg_code_planes(second, vg_coding_entries(uint64_t(g.secondDistancesEnd - second)), static_cast<uint8_t*>(scratch), 1);
+    vg_code_planes(first, vg_coding_entries(uint64_t(g.firstDistancesEnd - first)), static_cast<uint8_t*>(scratch), 1);
     const Scratch s = carve(scratch);
     for (uint32_t pi = 0; pi < g.secondCount; ++pi) {
         const Patch& p = g.second[pi];

@@ -5,6 +5,7 @@
 // pointing home, positions and scales finite. One pass over each array.
 #include "vg_validate.h"
 #include "vorogeo_container.h"
+#include "vorogeo_distance_coding.h"
 
 #include "vorogeo_coded_sequences.h"
 #include "vorogeo_topology_coding.h"
@@ -45,8 +46,6 @@ bool aligned(const T* p) {
     return (reinterpret_cast<uintptr_t>(p) & (alignof(T) - 1)) == 0;
 }
 
-// Entries a packed 12-bit array of `bytes` bytes holds (entry k ends at byte 3(k/2)+1+k%2).
-uint64_t packedCapacity(uint64_t bytes) { return (bytes / 3) * 2 + (bytes % 3 == 2 ? 1 : 0); }
 
 // Second layer: node rows over all slots, then the interior triangle (vg_graph.h). First
 // layer (`nodesOnly`): whole node x node matrices (a lone first-layer patch has no nodes).
@@ -434,8 +433,8 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, const Tabl
         if (!finite(out.positions[i])) return VG_ERR_CORRUPT_CONTENT;
 
     // Patches of both layers, then their slot lists.
-    if (!patchesValid(out.second, S2, slotCount, packedCapacity(count(g->second_distances())), S1, false) ||
-        !patchesValid(out.first, S1, slotCount, packedCapacity(count(g->first_distances())), 0, true) ||
+    if (!patchesValid(out.second, S2, slotCount, vg_coding_entries(count(g->second_distances())), S1, false) ||
+        !patchesValid(out.first, S1, slotCount, vg_coding_entries(count(g->first_distances())), 0, true) ||
         !slotsValid(out.second, S2, out.slots, N, V) || !slotsValid(out.first, S1, out.slots, N, V))
         return VG_ERR_CORRUPT_CONTENT;
 

@@ -1,12 +1,14 @@
 #include "bake.h"
 #include "vorogeo_baker.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
 
 #include "bake_limits.h"
+#include "hub_labels.h"
 #include "blob_writer.h"
 #include "mesh_stats.h"
 #include "partition.h"
@@ -56,6 +58,8 @@ void validate(const Mesh& mesh, const BakeOptions& o) {
         throw std::invalid_argument("compression level must be in [1, 22] (0: automatic)");
     if (o.compact && !o.compress)
         throw std::invalid_argument("--compact codes the distances for compression: it cannot go with --no-compress");
+    if (o.innerRowsAtOpen && !(o.compact && o.hubLabels))
+        throw std::invalid_argument("--inner-rows-at-open leaves out a part of the hub labels of a compact blob: it needs --compact and --hub-labels");
 }
 
 }  // namespace
@@ -79,6 +83,7 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
     report.faces = mesh.faceCount();
     report.compressed = options.compress;
     report.compact = options.compact;
+    report.innerRowsAtOpen = options.innerRowsAtOpen;
     StageClock clock(report);
 
     PartitionOptions po;
@@ -154,6 +159,13 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
         report.hubInnerEntries = hubs.inner.size();
         buffer = buildGraphBuffer(mesh, partition, geodesics.first, geodesics.second, secondInactive, params,
                                   landmarks, report.quantisationMaxAbs, hubs);
+        if (options.innerRowsAtOpen) {
+            // Checked once the graph is final: a reader must fit each patch's search in its
+            // fixed memory. Zeros then stand for the rows (the exit lists were made from them).
+            const std::string tooLarge = innerRowsAtOpenExcess(buffer);
+            if (!tooLarge.empty()) throw std::runtime_error("--inner-rows-at-open: " + tooLarge);
+            std::fill(hubs.inner.begin(), hubs.inner.end(), uint16_t(0));
+        }
         payload = withLabelTables(std::move(buffer), hubs);
         hubs = HubLabels();  // its tables are in the payload now
         clock.end("hub labels");
@@ -164,7 +176,8 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
     report.flatbufferBytes = payload.flatbufferSize;
     const int level = options.compressionLevel > 0 ? options.compressionLevel
                                                    : automaticLevel(options.compact, payload.bytes.size());
-    std::vector<uint8_t> blob = packContainer(std::move(payload), options.compress, options.compact, level);
+    std::vector<uint8_t> blob =
+        packContainer(std::move(payload), options.compress, options.compact, level, options.innerRowsAtOpen);
     report.blobBytes = blob.size();
     if (progress) progress("writing blob", 1.0);
     clock.end(options.compress ? "compress" : "container");

@@ -25,6 +25,9 @@ struct BakeOptions {
     int compressionLevel = 0;
     uint32_t landmarks = 12;      // A* landmarks stored in the blob (0: straight-line bound only)
     bool hubLabels = false;       // hub labels for microsecond point-to-point queries (hub_labels.h)
+    // With compact and hubLabels: the inner rows left out, vg_open computes them
+    // (schema/vorogeo_inner_rows.h): igea's blob ~40 bytes per vertex smaller, its open ~1 s longer.
+    bool innerRowsAtOpen = false;
     uint64_t maxMemoryBytes = 0;  // refuse up front / stop when a bake needs more (0: no limit)
 };
 
@@ -56,6 +59,7 @@ struct BakeReport {
     size_t flatbufferBytes = 0, blobBytes = 0;
     bool compressed = true;
     bool compact = false;           // distances prediction-coded (format 5, flag bit 1)
+    bool innerRowsAtOpen = false;   // inner rows left to the readers (flag bit 2)
     uint64_t hubs = 0, hubTreeNodes = 0, hubLabelEntries = 0, hubInnerEntries = 0;  // bake --hub-labels
 };
 

@@ -417,12 +417,16 @@ std::vector<uint8_t> sealContainer(const std::vector<uint8_t>& payload, uint32_t
     return out;
 }
 
-std::vector<uint8_t> packContainer(Payload payload, bool compress, bool compact, int level) {
+std::vector<uint8_t> packContainer(Payload payload, bool compress, bool compact, int level, bool innerRowsAtOpen) {
+    if (innerRowsAtOpen && !(compress && compact))
+        throw std::invalid_argument("packContainer: inner rows at open need a compact blob");
     if (!compress) return sealContainer(payload.bytes, 0, level, payload.flatbufferSize);
     if (!compact) return sealContainer(payload.bytes, VG_FLAG_ZSTD, level, payload.flatbufferSize);
     // Coded distances compress 3x (raw quanta hardly compress at all).
-    codeDistances(payload.bytes, payload.flatbufferSize);
-    return sealContainer(payload.bytes, VG_FLAG_ZSTD | VG_FLAG_CODED_DISTANCES, level, payload.flatbufferSize);
+    codeDistances(payload.bytes, payload.flatbufferSize, !innerRowsAtOpen);
+    return sealContainer(payload.bytes,
+                         VG_FLAG_ZSTD | VG_FLAG_CODED_DISTANCES | (innerRowsAtOpen ? VG_FLAG_INNER_ROWS_AT_OPEN : 0u),
+                         level, payload.flatbufferSize);
 }
 
 std::vector<uint8_t> packContainer(std::vector<uint8_t> flatbuffer, bool compress, bool compact, int level) {

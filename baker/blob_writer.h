@@ -48,7 +48,10 @@ Payload withLabelTables(std::vector<uint8_t> flatbuffer, const HubLabels& hubs);
 // distances and label tables prediction-coded first (compact: distance_coding.h). The
 // flatbuffer must be a verified Graph buffer (taken by value: a caller done with it moves
 // it in, and coding needs no copy). The second form takes a flatbuffer without labels.
-std::vector<uint8_t> packContainer(Payload payload, bool compress, bool compact, int level);
+// innerRowsAtOpen (compact, with labels whose inner table is zeros): the table stays zeros
+// and the container says so (schema/vorogeo_inner_rows.h).
+std::vector<uint8_t> packContainer(Payload payload, bool compress, bool compact, int level,
+                                   bool innerRowsAtOpen = false);
 std::vector<uint8_t> packContainer(std::vector<uint8_t> flatbuffer, bool compress, bool compact, int level);
 
 // Header + payload for any bytes, with the given container flags (VG_FLAG_ZSTD compresses

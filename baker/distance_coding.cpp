@@ -18,7 +18,7 @@ namespace {
 // flatbuffer in the payload: each table coded in place (an entry is read before it is
 // overwritten, and the prediction takes its neighbours from the coder's own row buffers),
 // then every array split into byte planes.
-void codeLabels(std::vector<uint8_t>& payload, uint64_t flatbufferSize, const fb::Graph* g) {
+void codeLabels(std::vector<uint8_t>& payload, uint64_t flatbufferSize, const fb::Graph* g, bool codeInner) {
     const auto* tree = g->hub_tree();
     if (!tree || tree->size() == 0) return;
     vg_label_tables at;
@@ -40,6 +40,7 @@ void codeLabels(std::vector<uint8_t>& payload, uint64_t flatbufferSize, const fb
             vg_code_label_table(columns, columns, begin + k * rows * 16, uint32_t(rows), 16, nullptr, detours.data(), 0);
     }
     vg_label_planes(reinterpret_cast<unsigned char*>(columns), g->hub_columns_count(), planeScratch.data(), 1);
+    if (!codeInner) return;
 
     const uint32_t* slots = g->slots()->data();
     for (uint32_t p = 0; p < g->first_patches()->size(); ++p) {
@@ -56,7 +57,7 @@ void codeLabels(std::vector<uint8_t>& payload, uint64_t flatbufferSize, const fb
 
 }  // namespace
 
-void codeDistances(std::vector<uint8_t>& payload, uint64_t flatbufferSize) {
+void codeDistances(std::vector<uint8_t>& payload, uint64_t flatbufferSize, bool codeInner) {
     std::vector<uint8_t>& flatbuffer = payload;  // (its first flatbufferSize bytes)
     if (flatbufferSize > payload.size()) flatbufferSize = payload.size();
     const fb::Graph* g = fb::GetGraph(flatbuffer.data());
@@ -85,7 +86,7 @@ void codeDistances(std::vector<uint8_t>& payload, uint64_t flatbufferSize) {
     std::vector<uint8_t> scratch(VG_CODING_PLANE_SCRATCH);
     vg_code_planes(second, vg_coding_entries(g->second_distances()->size()), scratch.data(), 0);
     vg_code_planes(first, vg_coding_entries(g->first_distances()->size()), scratch.data(), 0);
-    codeLabels(payload, flatbufferSize, g);
+    codeLabels(payload, flatbufferSize, g, codeInner);
     auto indicesIn = [&](const flatbuffers::Vector<uint32_t>* v) {
         return reinterpret_cast<uint32_t*>(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(v->data()) - flatbuffer.data()));
     };

@@ -12,8 +12,9 @@ namespace vorogeo {
 // default) by their codes, the steps of the hub-label tables after it (hub_columns and
 // hub_inner, schema/vorogeo_container.h) by theirs (schema/vorogeo_label_coding.h), and the
 // mesh topology's indices by their differences (schema/vorogeo_topology_coding.h); nothing
-// else changes. Throws std::runtime_error when the payload's size is not that of the
-// flatbuffer's tables.
-void codeDistances(std::vector<uint8_t>& payload, uint64_t flatbufferSize = UINT64_MAX);
+// else changes; without codeInner, hub_inner stays as it is (the zeros of a blob that
+// leaves it to its readers). Throws std::runtime_error when the payload's size is not that
+// of the flatbuffer's tables.
+void codeDistances(std::vector<uint8_t>& payload, uint64_t flatbufferSize = UINT64_MAX, bool codeInner = true);
 
 }  // namespace vorogeo

@@ -13,6 +13,7 @@
 #include "parallel.h"
 #include "quad_heap.h"
 #include "vorogeo_distance_coding.h"
+#include "vorogeo_inner_rows.h"
 #include "vorogeo_generated.h"
 
 namespace vorogeo {
@@ -336,10 +337,8 @@ private:
     std::vector<std::pair<uint32_t, uint32_t>> count_;  // per node: its patches on each side
 };
 
-uint16_t steps(double d, double scale) {
-    if (!std::isfinite(d)) return kHubUnreachable;
-    return uint16_t(std::min(65534.0, std::floor(d / scale + 0.5)));
-}
+// The readers round inner rows they compute with the same function (vorogeo_inner_rows.h).
+uint16_t steps(double d, float scale) { return vg_label_steps(d, scale); }
 
 // The rows of first-layer patch f's inner matrix: the active nodes of its second-layer
 // patches (`children`), sorted.
@@ -726,6 +725,33 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
     computeHubExitLists(flatbuffer, out);
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
+}
+
+std::string innerRowsAtOpenExcess(const std::vector<uint8_t>& flatbuffer) {
+    const fb::Graph* g = fb::GetGraph(flatbuffer.data());
+    const View v{g, uint32_t(g->node_flags()->size()), g->first_patches()->size(), g->second_patches()->size()};
+    std::vector<uint32_t> children(v.firstCount, 0), childNodes(v.firstCount, 0);
+    for (uint32_t q = 0; q < v.secondCount; ++q) {
+        ++children[v.second(q).parent()];
+        childNodes[v.second(q).parent()] += v.second(q).node_count();
+    }
+    auto tooMany = [](uint32_t f, uint64_t count, const char* what, uint32_t limit) {
+        return "first-layer patch " + std::to_string(f) + " has " + std::to_string(count) + " " + what +
+               ", more than the " + std::to_string(limit) +
+               " a reader's search holds (bake with more first-layer patches, --n1, or store the rows)";
+    };
+    for (uint32_t f = 0; f < v.firstCount; ++f) {
+        const fb::PatchRecord& r = v.first(f);
+        uint64_t nodes = g->hub_inner_begin()->Get(f + 1) - g->hub_inner_begin()->Get(f);
+        for (uint32_t k = 0; k < r.slot_count(); ++k) nodes += v.active(v.slot(r.slot_begin() + k)) ? 0 : 1;
+        if (nodes > VG_INNER_AT_OPEN_MAX_NODES)
+            return tooMany(f, nodes, "inner rows and merged-away slots", VG_INNER_AT_OPEN_MAX_NODES);
+        if (children[f] > VG_INNER_AT_OPEN_MAX_CHILDREN)
+            return tooMany(f, children[f], "second-layer patches", VG_INNER_AT_OPEN_MAX_CHILDREN);
+        if (childNodes[f] > VG_INNER_AT_OPEN_MAX_CHILD_NODES)
+            return tooMany(f, childNodes[f], "node slots in its second-layer patches", VG_INNER_AT_OPEN_MAX_CHILD_NODES);
+    }
+    return std::string();
 }
 
 }  // namespace vorogeo

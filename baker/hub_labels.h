@@ -28,6 +28,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace vorogeo {
@@ -95,5 +96,10 @@ enum class HubLabelRuns { blocks, perHub, perHubWholeOverlay };
 // Deterministic for any number of threads.
 HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProgress& progress = HubProgress(),
                            const HubPlanCheck& checkPlan = HubPlanCheck(), HubLabelRuns runs = HubLabelRuns::blocks);
+
+// For a blob that leaves its inner rows to the readers (bake --inner-rows-at-open,
+// schema/vorogeo_inner_rows.h): empty when every first-layer patch of the labelled graph
+// buffer keeps within the format's limits for a reader's search, else what passes them.
+std::string innerRowsAtOpenExcess(const std::vector<uint8_t>& flatbuffer);
 
 }  // namespace vorogeo

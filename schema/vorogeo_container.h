@@ -7,7 +7,9 @@
  *                  matrices (vorogeo_distance_coding.h) and hub-label tables
  *                  (vorogeo_label_coding.h) are prediction-coded, its topology, positions
  *                  and index sequences delta-coded, its patch edge lengths left to the
- *                  readers (vorogeo_topology_coding.h); other bits 0
+ *                  readers (vorogeo_topology_coding.h); bit 2 (with bits 0, 1 and hub
+ *                  labels only) = the hub_inner table is zeros, its readers compute it
+ *                  (vorogeo_inner_rows.h); other bits 0
  *       16     8  payload size in bytes (what follows the header)
  *       24     8  flatbuffer size in bytes
  *       32     8  table bytes: the hub-label tables after the flatbuffer (0 without labels)
@@ -41,6 +43,7 @@
 #define VG_FORMAT_VERSION 11u
 #define VG_FLAG_ZSTD 1u
 #define VG_FLAG_CODED_DISTANCES 2u
+#define VG_FLAG_INNER_ROWS_AT_OPEN 4u
 /* Unpacked bytes per zstd frame of a compressed payload (the baker's choice, 8 MiB: with the
  * 256 KB window of coded blobs, the cuts cost igea's blob 0.02% at level 9, 0.24% at 19). */
 #define VG_CONTAINER_FRAME_BYTES (8u << 20)

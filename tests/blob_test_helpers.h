@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <cstring>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -35,4 +36,19 @@ inline vg_status openStatus(const std::vector<uint8_t>& blob) {
     memory.resize(need);
     const vg_graph* graph = nullptr;
     return vg_open(copy.data(), blob.size(), memory.data(), need, &graph);
+}
+
+// Random pairs (from `seed`) answered by two opened blobs: the same bits.
+inline void requireSamePointToPoint(const vorogeo::tools::RuntimeGraph& a, vorogeo::tools::RuntimeWorkspace& wa,
+                                    const vorogeo::tools::RuntimeGraph& b, vorogeo::tools::RuntimeWorkspace& wb,
+                                    int pairs, uint32_t seed) {
+    const uint32_t V = vg_vertex_count(a.graph());
+    std::mt19937 rng(seed);
+    for (int i = 0; i < pairs; ++i) {
+        const uint32_t s = rng() % V, t = rng() % V;
+        float da = 0, db = 0;
+        REQUIRE(vg_distance(a.graph(), wa.get(), s, t, &da) == VG_OK);
+        REQUIRE(vg_distance(b.graph(), wb.get(), s, t, &db) == VG_OK);
+        REQUIRE(std::memcmp(&da, &db, sizeof da) == 0);
+    }
 }

@@ -40,7 +40,8 @@ int printBlobInfo(const std::string& path, bool json) {
                     "\"bytes_per_vertex\":%.2f,\"vertices\":%u,\"nodes\":%zu,\"nodes_pruned_second\":%zu,"
                     "\"first_patches\":%zu,\"second_patches\":%zu,\"first_layer_node_slots\":%zu,"
                     "\"seed\":%llu,\"n1\":%u,\"n2\":%u,\"delta\":%g,\"margin_rings\":%u,\"bbox_diagonal\":%g,"
-                    "\"label_table_bytes\":%zu,\"hubs\":%zu,\"hub_label_entries\":%zu,\"hub_inner_entries\":%zu,\"hub_exit_list_entries\":%zu}\n",
+                    "\"label_table_bytes\":%zu,\"hubs\":%zu,\"hub_label_entries\":%zu,\"hub_inner_entries\":%zu,\"inner_rows_at_open\":%s,"
+                    "\"hub_exit_list_entries\":%zu}\n",
                     path.c_str(), blob.formatVersion, blob.compressed ? "true" : "false", blob.coded ? "true" : "false",
                     fileBytes,
                     blob.flatbuffer.size(), V ? double(fileBytes) / V : 0.0, V, size(g->node_vertex()), secondPruned,
@@ -48,7 +49,7 @@ int printBlobInfo(const std::string& path, bool json) {
                     (unsigned long long)g->seed(), g->n1(), g->n2(), double(g->delta()), g->margin_rings(),
                     double(g->bbox_diagonal()), tableBytes, hubs,
                     size_t(g->hub_columns_count()), size_t(g->hub_inner_count()),
-                    size(g->hub_exit_lists()));
+                    blob.innerRowsAtOpen ? "true" : "false", size(g->hub_exit_lists()));
         return 0;
     }
     std::printf("%s: vorogeo blob, format version %u, %s, %zu bytes (%.1f per vertex; flatbuffer %zu bytes%s)\n",
@@ -65,8 +66,9 @@ int printBlobInfo(const std::string& path, bool json) {
                 g->n1() ? std::to_string(g->n1()).c_str() : "auto", g->n2() ? std::to_string(g->n2()).c_str() : "auto",
                 double(g->delta()), g->margin_rings());
     if (hubs > 0) {
-        std::printf("  hub labels      %zu hubs, %zu tree nodes, %zu label entries (blocks padded to 16), %zu inner entries\n", hubs,
-                    size(g->hub_tree()), size_t(g->hub_columns_count()), size_t(g->hub_inner_count()));
+        std::printf("  hub labels      %zu hubs, %zu tree nodes, %zu label entries (blocks padded to 16), %zu inner entries%s\n",
+                    hubs, size(g->hub_tree()), size_t(g->hub_columns_count()), size_t(g->hub_inner_count()),
+                    blob.innerRowsAtOpen ? " (computed at open)" : "");
         if (g->hub_exit_lists())
             std::printf("  exit lists      %zu entries in %zu lists (%.1f per list)\n", size(g->hub_exit_lists()),
                         size(g->hub_exit_list_begin()) - 1,

@@ -70,6 +70,14 @@ bool decodeLabels(BlobContents& blob, std::string& error) {
                 return false;
             }
     }
+    if (blob.innerRowsAtOpen) {  // zeros stand for them (schema/vorogeo_inner_rows.h)
+        for (uint64_t e = 0; e < innerCount; ++e)
+            if (inner[e] != 0) {
+                error = "the inner rows left to the readers are not zeros";
+                return false;
+            }
+        return true;
+    }
     vg_label_planes(reinterpret_cast<unsigned char*>(inner), innerCount, planes.data(), 0);
     const float inverseScale = 1.0f / g->hub_label_scale();
     for (uint32_t p = 0; p < S1; ++p) {
@@ -212,12 +220,17 @@ bool unpackBlob(const std::vector<uint8_t>& bytes, BlobContents& out, std::strin
         return false;
     }
     const uint32_t flags = vg_load_le32(h + 12);
-    if (flags & ~(VG_FLAG_ZSTD | VG_FLAG_CODED_DISTANCES)) {
+    if (flags & ~(VG_FLAG_ZSTD | VG_FLAG_CODED_DISTANCES | VG_FLAG_INNER_ROWS_AT_OPEN)) {
         error = "unknown flags " + std::to_string(flags);
         return false;
     }
     out.compressed = (flags & VG_FLAG_ZSTD) != 0;
     out.coded = (flags & VG_FLAG_CODED_DISTANCES) != 0;
+    out.innerRowsAtOpen = (flags & VG_FLAG_INNER_ROWS_AT_OPEN) != 0;
+    if (out.innerRowsAtOpen && !out.coded) {
+        error = "inner rows left to the readers in a blob that is not coded";
+        return false;
+    }
     const uint64_t payload = vg_load_le64(h + 16), size = vg_load_le64(h + 24), tableBytes = vg_load_le64(h + 32);
     if (payload != bytes.size() - VG_CONTAINER_HEADER_SIZE) {
         error = "payload size " + std::to_string(payload) + " does not match the " +
@@ -272,7 +285,11 @@ bool unpackBlob(const std::vector<uint8_t>& bytes, BlobContents& out, std::strin
     out.hubColumns.assign(tables, tables + g->hub_columns_count());
     tables = reinterpret_cast<const uint16_t*>(all.data() + at.inner_offset);
     out.hubInner.assign(tables, tables + g->hub_inner_count());
-    all.resize(size_t(size));
+    if (out.innerRowsAtOpen && (!g->hub_tree() || g->hub_tree()->size() == 0)) {
+        error = "inner rows left to the readers in a blob without hub labels";
+        return false;
+    }
+    all.resize(size_t(size));  // (g points into the old buffer from here)
     all.shrink_to_fit();
     return !out.coded || decodeDistances(out, error);
 }

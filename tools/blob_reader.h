@@ -17,6 +17,7 @@ struct BlobContents {
     uint32_t formatVersion = 0;
     bool compressed = false;
     bool coded = false;               // the file's distances were prediction-coded
+    bool innerRowsAtOpen = false;     // hubInner is the zeros of a blob that leaves it to vg_open
     std::vector<uint8_t> flatbuffer;  // verified
     // The hub-label tables after the flatbuffer (decoded; empty without labels).
     std::vector<uint16_t> hubColumns, hubInner;

@@ -148,7 +148,7 @@ void decodeLabelTable(uint16_t* table, uint32_t rows, uint32_t cols, const vg_la
     }
 }
 
-void decodeLabels(const vg_graph& g, void* scratch) {
+void decodeLabels(const vg_graph& g, bool inner, void* scratch) {
     if (g.hubTreeCount == 0) return;
     const Scratch m = carve(scratch);
     uint16_t* columns = const_cast<uint16_t*>(g.hubColumns);
@@ -161,15 +161,16 @@ void decodeLabels(const vg_graph& g, void* scratch) {
             decodeLabelTable(columns + g.hubColumnBegin[t] + k * rows * kHubBlock, uint32_t(rows), kHubBlock, nullptr,
                              scratch);
     }
-    uint16_t* inner = const_cast<uint16_t*>(g.hubInner);
-    joinPlanes(reinterpret_cast<unsigned char*>(inner), g.hubInnerMatrixBegin[g.firstCount], m.planes);
+    if (!inner) return;
+    uint16_t* table = const_cast<uint16_t*>(g.hubInner);
+    joinPlanes(reinterpret_cast<unsigned char*>(table), g.hubInnerMatrixBegin[g.firstCount], m.planes);
     const float inverseScale = 1.0f / g.hubLabelScale;
     for (uint32_t p = 0; p < g.firstCount; ++p) {
         const Patch& patch = g.first[p];
         const uint32_t rowBegin = g.hubInnerBegin[p];
         const vg_label_sites sites{g.positions, g.nodeVertex, g.hubInnerNode + rowBegin, g.slots + patch.slotBegin,
                                    inverseScale};
-        decodeLabelTable(inner + g.hubInnerMatrixBegin[p], g.hubInnerBegin[p + 1] - rowBegin, patch.slotCount, &sites,
+        decodeLabelTable(table + g.hubInnerMatrixBegin[p], g.hubInnerBegin[p + 1] - rowBegin, patch.slotCount, &sites,
                          scratch);
     }
 }

@@ -17,10 +17,10 @@ namespace vg {
 // Scratch for decodeLabels and decodeLabelTable, 16-byte aligned.
 size_t labelDecodeScratchSize();
 
-// Decodes g's hubColumns and hubInner in place (memory the caller owns). g must have passed
-// verifyAndBind, which bounds every tree node's blocks and every first-layer patch's
-// inner table (at most 65,536 columns).
-void decodeLabels(const vg_graph& g, void* scratch);
+// Decodes g's hubColumns and (with `inner`; not in a blob that leaves them out) hubInner in
+// place (memory the caller owns). g must have passed verifyAndBind, which bounds every tree
+// node's blocks and every first-layer patch's inner table (at most 65,536 columns).
+void decodeLabels(const vg_graph& g, bool inner, void* scratch);
 
 // One coded table (rows x cols at `table`, cols <= 65,536), decoded in place: exposed for
 // the tests, which compare it with the reference decoder.

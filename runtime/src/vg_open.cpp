@@ -1,7 +1,7 @@
 // vg_open_size / vg_open: container header, checksum, decompression into caller memory
 // (static zstd context), flatbuffers verification, the meaning checks of vg_validate.cpp,
 // then the decoding of prediction-coded distances and hub-label tables (vg_decode.h,
-// vg_decode_labels.h). Nothing is allocated; on
+// vg_decode_labels.h) and the inner rows a blob leaves out (vg_inner_rows.h). Nothing is allocated; on
 // failure nothing refers to the memory.
 #include <string.h>
 
@@ -10,6 +10,7 @@
 #include "vg_decode_labels.h"
 #include "vg_field_kernels.h"
 #include "vg_huge_pages.h"
+#include "vg_inner_rows.h"
 #include "vg_validate.h"
 #include "vorogeo_container.h"
 
@@ -24,6 +25,7 @@ namespace {
 struct Header {
     bool compressed;
     bool coded;  // distances prediction-coded: decoded in caller memory, never used in place
+    bool innerRowsAtOpen;  // the hub_inner table is zeros, computed here (vg_inner_rows.h)
     uint64_t payloadSize;
     uint64_t flatbufferSize;
     uint64_t tableBytes;    // the hub-label tables after the flatbuffer
@@ -53,9 +55,13 @@ vg_status readHeader(const void* blob, size_t blobSize, Header& h) {
     if (memcmp(p, VG_CONTAINER_MAGIC, 8) != 0) return VG_ERR_BAD_MAGIC;
     if (vg_load_le32(p + 8) != VG_FORMAT_VERSION) return VG_ERR_UNSUPPORTED_VERSION;
     const uint32_t flags = vg_load_le32(p + 12);
-    if ((flags & ~(VG_FLAG_ZSTD | VG_FLAG_CODED_DISTANCES)) != 0) return VG_ERR_UNSUPPORTED_FLAGS;
+    if ((flags & ~(VG_FLAG_ZSTD | VG_FLAG_CODED_DISTANCES | VG_FLAG_INNER_ROWS_AT_OPEN)) != 0)
+        return VG_ERR_UNSUPPORTED_FLAGS;
     h.compressed = (flags & VG_FLAG_ZSTD) != 0;
     h.coded = (flags & VG_FLAG_CODED_DISTANCES) != 0;
+    h.innerRowsAtOpen = (flags & VG_FLAG_INNER_ROWS_AT_OPEN) != 0;
+    // Only a coded blob leaves its inner rows out (its tables are decoded in caller memory).
+    if (h.innerRowsAtOpen && !h.coded) return VG_ERR_CORRUPT_STRUCTURE;
 #if !VG_WITH_ZSTD
     if (h.compressed) return VG_ERR_UNSUPPORTED_FLAGS;
 #endif
@@ -68,6 +74,7 @@ vg_status readHeader(const void* blob, size_t blobSize, Header& h) {
     if (h.payloadSize < present) return VG_ERR_CORRUPT_STRUCTURE;  // trailing bytes
     if (h.flatbufferSize == 0 || h.flatbufferSize > kMaxFlatbuffer) return VG_ERR_CORRUPT_STRUCTURE;
     if (h.tableBytes > kMaxTableBytes || h.tableBytes % 64 != 0) return VG_ERR_CORRUPT_STRUCTURE;
+    if (h.innerRowsAtOpen && h.tableBytes == 0) return VG_ERR_CORRUPT_STRUCTURE;  // no labels
     h.unpackedSize = h.tableBytes ? vg_align64(h.flatbufferSize) + h.tableBytes : h.flatbufferSize;
     if (h.unpackedSize > SIZE_MAX - 4 * kAlign) return VG_ERR_OUT_OF_MEMORY;  // a 32-bit process
     if (!h.compressed && h.unpackedSize != h.payloadSize) return VG_ERR_CORRUPT_STRUCTURE;
@@ -104,6 +111,7 @@ size_t memoryNeeded(const void* blob, const Header& h) {
     size_t scratch = h.compressed ? decompressionContextSize() : 0;
     if (h.coded && vg::decodeScratchSize() > scratch) scratch = vg::decodeScratchSize();
     if (h.coded && vg::labelDecodeScratchSize() > scratch) scratch = vg::labelDecodeScratchSize();
+    if (h.innerRowsAtOpen && vg::innerRowsScratchSize() > scratch) scratch = vg::innerRowsScratchSize();
     return n + alignUp(scratch);
 }
 
@@ -163,7 +171,12 @@ extern "C" vg_status vg_open(const void* blob, size_t blob_size, void* memory, s
     const bool avx2 = vg::cpuHasAvx2();
     if (h.coded) {
         vg::decodeDistances(*graph, avx2, cursor);
-        vg::decodeLabels(*graph, cursor);
+        vg::decodeLabels(*graph, !h.innerRowsAtOpen, cursor);
+        if (h.innerRowsAtOpen) {
+            if (graph->hubTreeCount == 0) return VG_ERR_CORRUPT_CONTENT;
+            st = vg::computeInnerRows(*graph, avx2, cursor);
+            if (st != VG_OK) return st;
+        }
     }
     graph->fileAllocator = vg_allocator{nullptr, nullptr, nullptr};
     graph->fileMemory = nullptr;

@@ -9,7 +9,9 @@
 //   2: the same, zstd-compressed;
 //   3: the same, zstd-compressed and flagged as prediction-coded (the runtime decodes the
 //      distance arrays of whatever flatbuffer passes validation);
-//   4: the same flagged as coded, uncompressed.
+//   4: the same flagged as coded, uncompressed;
+//   5: the same, zstd-compressed, coded and flagged as leaving the inner rows to vg_open
+//      (the runtime computes them for whatever labelled flatbuffer passes validation).
 // Nothing may crash, read out of bounds or trip UBSan; every status must be a known one.
 #include <algorithm>
 #include <cmath>
@@ -148,11 +150,16 @@ void queryEverything(const vg_graph* g, const uint8_t* data, size_t size) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size < 1) return 0;
-    const uint8_t mode = data[0] % 5;
+    const uint8_t mode = data[0] % 6;
     const size_t skip = mode == 0 ? 1 : 5;
     if (size < skip) return 0;
     std::vector<uint8_t> rest(data + skip, data + size);
-    const uint32_t flags[5] = {0, 0, VG_FLAG_ZSTD, VG_FLAG_ZSTD | VG_FLAG_CODED_DISTANCES, VG_FLAG_CODED_DISTANCES};
+    const uint32_t flags[6] = {0,
+                               0,
+                               VG_FLAG_ZSTD,
+                               VG_FLAG_ZSTD | VG_FLAG_CODED_DISTANCES,
+                               VG_FLAG_CODED_DISTANCES,
+                               VG_FLAG_ZSTD | VG_FLAG_CODED_DISTANCES | VG_FLAG_INNER_ROWS_AT_OPEN};
     const uint64_t flatbufferSize = mode == 0 ? 0 : vg_load_le32(data + 1);
     std::vector<uint8_t> blob = mode == 0 ? rest : vorogeo::sealContainer(rest, flags[mode], 1, flatbufferSize);
     if (mode != 0 && rest.empty()) return 0;

@@ -2,6 +2,7 @@
 // from generated meshes, in the five presentations fuzz_blob.cpp understands, and small
 // mesh files of every format, valid and broken, for fuzz_mesh.cpp. Rerun it when the blob
 // format changes:  build/tests/vorogeo_fuzz_corpus tests/fuzz/corpus
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include "generators.h"
 #include "mesh_io.h"
 #include "vorogeo_container.h"
+#include "vorogeo_generated.h"
 
 using namespace vorogeo;
 
@@ -98,6 +100,15 @@ int main(int argc, char** argv) {
             codeDistances(coded, size);
             writePayloadSeed(blobs / "hubs-coded-zstd", 3, coded, size);
             writePayloadSeed(blobs / "hubs-coded", 4, coded, size);
+            // The inner rows left to the readers: their table zeros, the rest coded.
+            std::vector<uint8_t> atOpen = payload;
+            const fb::Graph* g = fb::GetGraph(atOpen.data());
+            vg_label_tables at;
+            if (!vg_label_tables_at(size, g->hub_columns_count(), g->hub_inner_count(), &at))
+                throw std::runtime_error("hub-label tables out of range");
+            std::fill(atOpen.begin() + int64_t(at.inner_offset), atOpen.begin() + int64_t(at.inner_offset + 2 * g->hub_inner_count()), 0);
+            codeDistances(atOpen, size, false);
+            writePayloadSeed(blobs / "hubs-inner-at-open", 5, atOpen, size);
         }
         Mesh pair = planeGrid(3, 3, 1.0);
         const Mesh other = planeGrid(2, 2, 1.0);

@@ -1,0 +1,306 @@
+// Inner rows computed at vg_open (vg_inner_rows.h). Per first-layer patch f and per 16 of
+// its slots, one search over f's second-layer node graph in which a node holds 16
+// distances (lane i: from the block's slot i): a row of a patch matrix, read once, lowers
+// all 16. The search is label-correcting: a node leaves the queue keyed by the smallest
+// lane lowered since it last relaxed, relaxes the lowered lanes, and may come back. It
+// ends at the least path sums, the same bits in any order (vorogeo_inner_rows.h), which
+// is what lets the runtime compute what the baker computed with another search.
+#include "vg_inner_rows.h"
+
+#include "vorogeo_inner_rows.h"
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#define VG_INNER_AVX2 1
+#else
+#define VG_INNER_AVX2 0
+#endif
+
+namespace vg {
+namespace {
+
+constexpr uint32_t kLanes = 16;
+constexpr uint32_t kMaxNodes = VG_INNER_AT_OPEN_MAX_NODES;
+constexpr uint32_t kMaxChildren = VG_INNER_AT_OPEN_MAX_CHILDREN;
+constexpr uint32_t kMaxChildNodes = VG_INNER_AT_OPEN_MAX_CHILD_NODES;
+constexpr double kInf = __builtin_inf();
+
+// The scratch, carved in this order (each part a multiple of 64 bytes).
+struct Search {
+    double* dist;             // kMaxNodes x kLanes
+    double* key;              // per node: its queue key
+    uint32_t* heap;           // binary heap of nodes
+    uint32_t* heapAt;         // per node: its heap position, kNone when not queued
+    uint16_t* pending;        // per node: lanes lowered since it last relaxed
+    uint32_t* children;       // f's second-layer patches, increasing
+    uint32_t* childBegin;     // children + 1 offsets into slotLocal
+    uint32_t* slotLocal;      // per child node slot: its local node, kNone when none
+    uint32_t* extraNode;      // local nodes from `rows` on: slots' merged-away nodes
+    uint32_t heapSize;
+};
+
+constexpr size_t kDistBytes = size_t(kMaxNodes) * kLanes * sizeof(double);
+constexpr size_t kKeyBytes = size_t(kMaxNodes) * sizeof(double);
+constexpr size_t kHeapBytes = size_t(kMaxNodes) * sizeof(uint32_t);
+constexpr size_t kPendingBytes = size_t(kMaxNodes) * sizeof(uint16_t);
+constexpr size_t kChildrenBytes = size_t(kMaxChildren) * sizeof(uint32_t);
+constexpr size_t kChildBeginBytes = (size_t(kMaxChildren) + 16) * sizeof(uint32_t);
+constexpr size_t kSlotLocalBytes = size_t(kMaxChildNodes) * sizeof(uint32_t);
+constexpr size_t kExtraBytes = size_t(kMaxNodes) * sizeof(uint32_t);
+
+Search carve(void* memory) {
+    unsigned char* p = static_cast<unsigned char*>(memory);
+    Search s;
+    s.dist = reinterpret_cast<double*>(p);
+    p += kDistBytes;
+    s.key = reinterpret_cast<double*>(p);
+    p += kKeyBytes;
+    s.heap = reinterpret_cast<uint32_t*>(p);
+    p += kHeapBytes;
+    s.heapAt = reinterpret_cast<uint32_t*>(p);
+    p += kHeapBytes;
+    s.pending = reinterpret_cast<uint16_t*>(p);
+    p += kPendingBytes;
+    s.children = reinterpret_cast<uint32_t*>(p);
+    p += kChildrenBytes;
+    s.childBegin = reinterpret_cast<uint32_t*>(p);
+    p += kChildBeginBytes;
+    s.slotLocal = reinterpret_cast<uint32_t*>(p);
+    p += kSlotLocalBytes;
+    s.extraNode = reinterpret_cast<uint32_t*>(p);
+    s.heapSize = 0;
+    return s;
+}
+
+// Position of `node` among the sorted `nodes`, kNone when absent.
+uint32_t find(const uint32_t* nodes, uint32_t count, uint32_t node) {
+    uint32_t lo = 0, hi = count;
+    while (lo < hi) {
+        const uint32_t mid = lo + (hi - lo) / 2;
+        if (nodes[mid] < node)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < count && nodes[lo] == node ? lo : kNone;
+}
+
+// The queue: a binary heap by (key, node), a node at most once, its key lowered in place.
+bool before(const Search& s, uint32_t a, uint32_t b) { return s.key[a] < s.key[b] || (s.key[a] == s.key[b] && a < b); }
+
+void siftUp(Search& s, uint32_t at) {
+    const uint32_t node = s.heap[at];
+    while (at > 0) {
+        const uint32_t up = (at - 1) / 2;
+        if (!before(s, node, s.heap[up])) break;
+        s.heap[at] = s.heap[up];
+        s.heapAt[s.heap[at]] = at;
+        at = up;
+    }
+    s.heap[at] = node;
+    s.heapAt[node] = at;
+}
+
+void queue(Search& s, uint32_t node, double key) {
+    if (s.heapAt[node] != kNone) {
+        if (!(key < s.key[node])) return;
+        s.key[node] = key;
+        siftUp(s, s.heapAt[node]);
+        return;
+    }
+    s.key[node] = key;
+    s.heap[s.heapSize] = node;
+    siftUp(s, s.heapSize++);
+}
+
+uint32_t pop(Search& s) {
+    const uint32_t top = s.heap[0];
+    s.heapAt[top] = kNone;
+    const uint32_t last = s.heap[--s.heapSize];
+    if (s.heapSize == 0) return top;
+    uint32_t at = 0;
+    for (;;) {
+        uint32_t child = 2 * at + 1;
+        if (child >= s.heapSize) break;
+        if (child + 1 < s.heapSize && before(s, s.heap[child + 1], s.heap[child])) ++child;
+        if (!before(s, s.heap[child], last)) break;
+        s.heap[at] = s.heap[child];
+        s.heapAt[s.heap[at]] = at;
+        at = child;
+    }
+    s.heap[at] = last;
+    s.heapAt[last] = at;
+    return top;
+}
+
+// Lowers node `to`'s lanes to source + w where that is lower; queues it if any is.
+inline void lowerScalar(Search& s, const double* source, double w, uint32_t to) {
+    double* d = s.dist + uint64_t(to) * kLanes;
+    uint32_t lowered = 0;
+    double key = kInf;
+    for (uint32_t i = 0; i < kLanes; ++i) {
+        const double c = source[i] + w;
+        if (c < d[i]) {
+            d[i] = c;
+            lowered |= 1u << i;
+            key = c < key ? c : key;
+        }
+    }
+    if (lowered == 0) return;
+    s.pending[to] = uint16_t(s.pending[to] | lowered);
+    queue(s, to, key);
+}
+
+// Relaxes one matrix row (`n` packed 12-bit quanta from index `row`, column `self` being
+// the node itself) from the lanes `source` (+inf in lanes that do not relax).
+void relaxRowScalar(Search& s, const uint8_t* packed, uint64_t row, uint32_t n, uint32_t self, double scale,
+                    const uint32_t* to, const double* source) {
+    for (uint32_t j = 0; j < n; ++j) {
+        const uint32_t q = quantum(packed, row + j);
+        if (j == self || q == kNoPathQuantum || to[j] == kNone) continue;
+        lowerScalar(s, source, double(q) * scale, to[j]);
+    }
+}
+
+#if VG_INNER_AVX2
+// The same sums and comparisons, four lanes per instruction.
+__attribute__((target("avx2"))) void relaxRowAvx2(Search& s, const uint8_t* packed, uint64_t row, uint32_t n,
+                                                  uint32_t self, double scale, const uint32_t* to,
+                                                  const double* source) {
+    const __m256d s0 = _mm256_loadu_pd(source), s1 = _mm256_loadu_pd(source + 4), s2 = _mm256_loadu_pd(source + 8),
+                  s3 = _mm256_loadu_pd(source + 12);
+    const __m256d inf = _mm256_set1_pd(kInf);
+    for (uint32_t j = 0; j < n; ++j) {
+        const uint32_t q = quantum(packed, row + j);
+        if (j == self || q == kNoPathQuantum || to[j] == kNone) continue;
+        const __m256d w = _mm256_set1_pd(double(q) * scale);
+        double* d = s.dist + uint64_t(to[j]) * kLanes;
+        const __m256d c0 = _mm256_add_pd(s0, w), c1 = _mm256_add_pd(s1, w), c2 = _mm256_add_pd(s2, w),
+                      c3 = _mm256_add_pd(s3, w);
+        const __m256d d0 = _mm256_loadu_pd(d), d1 = _mm256_loadu_pd(d + 4), d2 = _mm256_loadu_pd(d + 8),
+                      d3 = _mm256_loadu_pd(d + 12);
+        const __m256d m0 = _mm256_cmp_pd(c0, d0, _CMP_LT_OQ), m1 = _mm256_cmp_pd(c1, d1, _CMP_LT_OQ),
+                      m2 = _mm256_cmp_pd(c2, d2, _CMP_LT_OQ), m3 = _mm256_cmp_pd(c3, d3, _CMP_LT_OQ);
+        const uint32_t lowered = uint32_t(_mm256_movemask_pd(m0)) | (uint32_t(_mm256_movemask_pd(m1)) << 4) |
+                                 (uint32_t(_mm256_movemask_pd(m2)) << 8) | (uint32_t(_mm256_movemask_pd(m3)) << 12);
+        if (lowered == 0) continue;
+        _mm256_storeu_pd(d, _mm256_blendv_pd(d0, c0, m0));
+        _mm256_storeu_pd(d + 4, _mm256_blendv_pd(d1, c1, m1));
+        _mm256_storeu_pd(d + 8, _mm256_blendv_pd(d2, c2, m2));
+        _mm256_storeu_pd(d + 12, _mm256_blendv_pd(d3, c3, m3));
+        // The key: the least lowered lane.
+        __m256d k = _mm256_min_pd(_mm256_min_pd(_mm256_blendv_pd(inf, c0, m0), _mm256_blendv_pd(inf, c1, m1)),
+                                  _mm256_min_pd(_mm256_blendv_pd(inf, c2, m2), _mm256_blendv_pd(inf, c3, m3)));
+        const __m128d half = _mm_min_pd(_mm256_castpd256_pd128(k), _mm256_extractf128_pd(k, 1));
+        const double key = _mm_cvtsd_f64(_mm_min_sd(half, _mm_unpackhi_pd(half, half)));
+        s.pending[to[j]] = uint16_t(s.pending[to[j]] | lowered);
+        queue(s, to[j], key);
+    }
+}
+#endif
+
+// Patch f's inner table: its children, their slots' local nodes, then a search per block
+// of up to kLanes slots, written out in steps.
+vg_status patchRows(const vg_graph& g, uint32_t f, Search& s, bool avx2) {
+#if !VG_INNER_AVX2
+    (void)avx2;
+#endif
+    const Patch& first = g.first[f];
+    const uint32_t K = first.slotCount;
+    const uint32_t* rowNode = g.hubInnerNode + g.hubInnerBegin[f];
+    const uint32_t rows = g.hubInnerBegin[f + 1] - g.hubInnerBegin[f];
+    uint16_t* table = const_cast<uint16_t*>(g.hubInner) + g.hubInnerMatrixBegin[f];
+    // The blob stores zeros here: anything else is a corrupt blob, not something to overwrite.
+    for (uint64_t e = 0; e < uint64_t(rows) * K; ++e)
+        if (table[e] != 0) return VG_ERR_CORRUPT_CONTENT;
+
+    uint32_t childCount = 0, childNodes = 0;
+    s.childBegin[0] = 0;
+    for (uint32_t q = 0; q < g.secondCount; ++q) {
+        if (g.second[q].parent != f) continue;
+        const Patch& p = g.second[q];
+        if (childCount == kMaxChildren || p.nodeCount > kMaxChildNodes - childNodes) return VG_ERR_CORRUPT_CONTENT;
+        s.children[childCount] = q;
+        for (uint32_t j = 0; j < p.nodeCount; ++j) s.slotLocal[childNodes + j] = find(rowNode, rows, g.slots[p.slotBegin + j]);
+        childNodes += p.nodeCount;
+        s.childBegin[++childCount] = childNodes;
+    }
+    // Local nodes: the inner rows, then each slot whose node is merged away.
+    uint32_t nodes = rows;
+    if (rows > kMaxNodes) return VG_ERR_CORRUPT_CONTENT;
+    for (uint32_t k = 0; k < K; ++k) {
+        const uint32_t b = g.slots[first.slotBegin + k];
+        if (nodeActive(g, b)) {
+            if (find(rowNode, rows, b) == kNone) return VG_ERR_CORRUPT_CONTENT;
+            continue;
+        }
+        if (nodes == kMaxNodes) return VG_ERR_CORRUPT_CONTENT;
+        s.extraNode[nodes++ - rows] = b;
+    }
+
+    double source[kLanes];
+    uint32_t nextExtra = rows;
+    for (uint32_t k0 = 0; k0 < K; k0 += kLanes) {
+        const uint32_t count = K - k0 < kLanes ? K - k0 : kLanes;
+        for (uint64_t i = 0; i < uint64_t(nodes) * kLanes; ++i) s.dist[i] = kInf;
+        for (uint32_t n = 0; n < nodes; ++n) {
+            s.pending[n] = 0;
+            s.heapAt[n] = kNone;
+        }
+        s.heapSize = 0;
+        for (uint32_t i = 0; i < count; ++i) {
+            const uint32_t b = g.slots[first.slotBegin + k0 + i];
+            const uint32_t local = nodeActive(g, b) ? find(rowNode, rows, b) : nextExtra++;
+            s.dist[uint64_t(local) * kLanes + i] = 0.0;
+            s.pending[local] = uint16_t(s.pending[local] | (1u << i));
+            queue(s, local, 0.0);
+        }
+        while (s.heapSize > 0) {
+            const uint32_t u = pop(s);
+            const uint32_t relax = s.pending[u];
+            s.pending[u] = 0;
+            const double* du = s.dist + uint64_t(u) * kLanes;
+            for (uint32_t i = 0; i < kLanes; ++i) source[i] = (relax >> i) & 1u ? du[i] : kInf;
+            const uint32_t node = u < rows ? rowNode[u] : s.extraNode[u - rows];
+            for (uint32_t m = g.nodeSecondBegin[node]; m < g.nodeSecondBegin[node + 1]; ++m) {
+                const Membership& ms = g.nodeSecond[m];
+                const Patch& p = g.second[ms.patch];
+                if (p.parent != f) continue;
+                const uint32_t c = find(s.children, childCount, ms.patch);
+                const uint32_t* to = s.slotLocal + s.childBegin[c];
+                const uint64_t row = nodeRowStart(p, ms.slot);
+#if VG_INNER_AVX2
+                if (avx2) {  // vg_open has asked the CPU
+                    relaxRowAvx2(s, g.secondDistances, row, p.nodeCount, ms.slot, double(p.scale), to, source);
+                    continue;
+                }
+#endif
+                relaxRowScalar(s, g.secondDistances, row, p.nodeCount, ms.slot, double(p.scale), to, source);
+            }
+        }
+        for (uint32_t r = 0; r < rows; ++r) {
+            const double* d = s.dist + uint64_t(r) * kLanes;
+            uint16_t* out = table + uint64_t(r) * K + k0;
+            for (uint32_t i = 0; i < count; ++i) out[i] = vg_label_steps(double(float(d[i])), g.hubLabelScale);
+        }
+    }
+    return VG_OK;
+}
+
+}  // namespace
+
+size_t innerRowsScratchSize() {
+    return kDistBytes + kKeyBytes + 2 * kHeapBytes + kPendingBytes + kChildrenBytes + kChildBeginBytes +
+           kSlotLocalBytes + kExtraBytes;
+}
+
+vg_status computeInnerRows(const vg_graph& g, bool avx2, void* scratch) {
+    Search s = carve(scratch);
+    for (uint32_t f = 0; f < g.firstCount; ++f) {
+        const vg_status st = patchRows(g, f, s, avx2);
+        if (st != VG_OK) return st;
+    }
+    return VG_OK;
+}
+
+}  // namespace vg

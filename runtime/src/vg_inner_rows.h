@@ -1,0 +1,23 @@
+// The hub-label inner rows of a blob that leaves them to its readers
+// (VG_FLAG_INNER_ROWS_AT_OPEN, schema/vorogeo_inner_rows.h), computed at vg_open into the
+// zeroed table, with the baker's numbers bit for bit.
+#pragma once
+
+#include <stddef.h>
+
+#include "vg_graph.h"
+
+namespace vg {
+
+// Scratch for computeInnerRows, 64-byte aligned: fixed, the format bounding a patch's
+// search (~3 MB).
+size_t innerRowsScratchSize();
+
+// Fills g's hubInner (memory the caller owns), a first-layer patch at a time; avx2: the
+// CPU runs AVX2 (the same numbers either way). g must have passed verifyAndBind with
+// labels, its distances decoded. VG_ERR_CORRUPT_CONTENT for a table that is not zeros, a
+// patch past the format's limits or a slot node that no inner row holds (no baker writes
+// any of these).
+vg_status computeInnerRows(const vg_graph& g, bool avx2, void* scratch);
+
+}  // namespace vg

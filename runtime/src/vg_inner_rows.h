@@ -10,7 +10,7 @@
 namespace vg {
 
 // Scratch for computeInnerRows, 64-byte aligned: fixed, the format bounding a patch's
-// search (~3 MB).
+// search (~3.5 MB).
 size_t innerRowsScratchSize();
 
 // Fills g's hubInner (memory the caller owns), a first-layer patch at a time; avx2: the

@@ -1,8 +1,8 @@
 // vg_open_size / vg_open: container header, checksum, decompression into caller memory
 // (static zstd context), flatbuffers verification, the meaning checks of vg_validate.cpp,
 // then the decoding of prediction-coded distances and hub-label tables (vg_decode.h,
-// vg_decode_labels.h) and the inner rows a blob leaves out (vg_inner_rows.h). Nothing is allocated; on
-// failure nothing refers to the memory.
+// vg_decode_labels.h) and the inner rows a blob leaves out (vg_inner_rows.h). Nothing is
+// allocated; on failure nothing refers to the memory.
 #include <string.h>
 
 #include "vg_graph.h"

@@ -149,6 +149,35 @@ TEST_CASE("inner rows at open: a table that is not zeros, or the flag on a blob 
     CHECK(error.find("without hub labels") != std::string::npos);
 }
 
+TEST_CASE("inner rows at open: a slot whose node no inner row holds is refused", "[runtime][hub][coding]") {
+    const std::vector<uint8_t> atOpen = bakeLabelled(bumpyTorus(40, 20), -1.0, true, true);
+    // The decoded graph (the tools' reader) says which inner row is a slot node of patch 0;
+    // hub_inner_node is stored as it is, so the same entry of the payload is moved off it.
+    tools::BlobContents c;
+    std::string error;
+    REQUIRE(tools::unpackBlob(atOpen, c, error));
+    const fb::Graph* g = c.graph();
+    const auto* innerNode = g->hub_inner_node();
+    const uint32_t rowEnd = g->hub_inner_begin()->Get(1);
+    const fb::PatchRecord* first = g->first_patches()->Get(0);
+    uint32_t moved = UINT32_MAX;
+    for (uint32_t i = 0; i + 1 < rowEnd && moved == UINT32_MAX; ++i) {
+        if (innerNode->Get(i) + 1 >= innerNode->Get(i + 1)) continue;  // no room: the list stays increasing
+        for (uint32_t k = 0; k < first->slot_count(); ++k)
+            if (g->slots()->Get(first->slot_begin() + k) == innerNode->Get(i)) moved = i;
+    }
+    REQUIRE(moved != UINT32_MAX);
+    uint64_t flatbufferSize = 0;
+    std::vector<uint8_t> payload = payloadOf(atOpen, flatbufferSize);
+    const auto* stored = fb::GetGraph(payload.data())->hub_inner_node();
+    REQUIRE(stored->Get(moved) == innerNode->Get(moved));
+    const uint32_t flags = VG_FLAG_ZSTD | VG_FLAG_CODED_DISTANCES | VG_FLAG_INNER_ROWS_AT_OPEN;
+    CHECK(openStatus(sealContainer(payload, flags, 1, flatbufferSize)) == VG_OK);  // resealed as it was
+    uint8_t* entry = payload.data() + (reinterpret_cast<const uint8_t*>(stored->data() + moved) - payload.data());
+    vg_store_le32(entry, innerNode->Get(moved) + 1);
+    CHECK(openStatus(sealContainer(payload, flags, 1, flatbufferSize)) == VG_ERR_CORRUPT_CONTENT);
+}
+
 TEST_CASE("inner rows at open: the bake needs --compact and --hub-labels", "[bake][hub]") {
     BakeOptions o;
     o.hubLabels = true;

@@ -420,6 +420,8 @@ TEST_CASE("bake command: bad parameters and outputs give clear errors and leave 
         {"--level 0", "--level must be in [1, 22]", 2},
         {"--level 23", "--level must be in [1, 22]", 2},
         {"--level 5 --no-compress", "--level sets the zstd level", 2},
+        {"--inner-rows-at-open", "--inner-rows-at-open needs --compact and --hub-labels", 2},
+        {"--inner-rows-at-open --compact", "--inner-rows-at-open needs --compact and --hub-labels", 2},
     };
     for (const Case& c : cases) {
         const test::ToolResult r = test::runTool("bake " + test::quote(meshPath) + " -o " + test::quote(out) + " " + c.args);

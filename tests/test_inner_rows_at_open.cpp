@@ -17,7 +17,9 @@
 #include "blob_test_helpers.h"
 #include "blob_writer.h"
 #include "generators.h"
+#include "mesh_io.h"
 #include "runtime_graph.h"
+#include "test_helpers.h"
 #include "vg_field_kernels.h"
 #include "vg_graph.h"
 #include "vg_inner_rows.h"
@@ -176,6 +178,23 @@ TEST_CASE("inner rows at open: a slot whose node no inner row holds is refused",
     uint8_t* entry = payload.data() + (reinterpret_cast<const uint8_t*>(stored->data() + moved) - payload.data());
     vg_store_le32(entry, innerNode->Get(moved) + 1);
     CHECK(openStatus(sealContainer(payload, flags, 1, flatbufferSize)) == VG_ERR_CORRUPT_CONTENT);
+}
+
+TEST_CASE("inner rows at open: vorogeo bake writes such a blob and vorogeo info says so", "[bake][hub][cli]") {
+    test::TempDir dir;
+    std::string error;
+    const std::string meshPath = dir.file("torus.ply"), out = dir.file("torus.vgeo");
+    REQUIRE(writeMesh(bumpyTorus(40, 20), meshPath, error));
+    const test::ToolResult r = test::runTool("bake " + test::quote(meshPath) + " -o " + test::quote(out) +
+                                             " --n1 8 --compact --hub-labels --inner-rows-at-open");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    CHECK(r.out.find("inner rows left to vg_open") != std::string::npos);
+    const test::ToolResult info = test::runTool("info " + test::quote(out));
+    CHECK(info.status == 0);
+    CHECK(info.out.find("inner entries (computed at open)") != std::string::npos);
+    const test::ToolResult json = test::runTool("info " + test::quote(out) + " --json");
+    CHECK(json.out.find("\"inner_rows_at_open\":true") != std::string::npos);
 }
 
 TEST_CASE("inner rows at open: the bake needs --compact and --hub-labels", "[bake][hub]") {

@@ -146,6 +146,11 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
     if (progress) progress("landmarks", 1.0);
     clock.end("landmarks");
     Payload payload;
+    if (options.innerRowsAtOpen) {
+        // A reader must fit each patch's search in its fixed memory: checked before the labels.
+        const std::string tooLarge = innerRowsAtOpenExcess(buffer);
+        if (!tooLarge.empty()) throw std::runtime_error("--inner-rows-at-open: " + tooLarge);
+    }
     if (options.hubLabels) {
         if (progress) progress("hub labels", 0.0);
         HubLabels hubs = computeHubLabels(
@@ -159,13 +164,8 @@ std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, Bake
         report.hubInnerEntries = hubs.inner.size();
         buffer = buildGraphBuffer(mesh, partition, geodesics.first, geodesics.second, secondInactive, params,
                                   landmarks, report.quantisationMaxAbs, hubs);
-        if (options.innerRowsAtOpen) {
-            // Checked once the graph is final: a reader must fit each patch's search in its
-            // fixed memory. Zeros then stand for the rows (the exit lists were made from them).
-            const std::string tooLarge = innerRowsAtOpenExcess(buffer);
-            if (!tooLarge.empty()) throw std::runtime_error("--inner-rows-at-open: " + tooLarge);
-            std::fill(hubs.inner.begin(), hubs.inner.end(), uint16_t(0));
-        }
+        // Zeros stand for rows left to the readers (the exit lists were made from them).
+        if (options.innerRowsAtOpen) std::fill(hubs.inner.begin(), hubs.inner.end(), uint16_t(0));
         payload = withLabelTables(std::move(buffer), hubs);
         hubs = HubLabels();  // its tables are in the payload now
         clock.end("hub labels");

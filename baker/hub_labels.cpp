@@ -727,7 +727,10 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
     return out;
 }
 
-std::string innerRowsAtOpenExcess(const std::vector<uint8_t>& flatbuffer) {
+std::string innerRowsAtOpenExcess(const std::vector<uint8_t>& flatbuffer, const InnerRowsAtOpenLimits& limits) {
+    static_assert(VG_INNER_AT_OPEN_MAX_NODES == 16384 && VG_INNER_AT_OPEN_MAX_CHILDREN == 4096 &&
+                      VG_INNER_AT_OPEN_MAX_CHILD_NODES == 65536,
+                  "hub_labels.h states the format's limits as the default");
     const fb::Graph* g = fb::GetGraph(flatbuffer.data());
     const View v{g, uint32_t(g->node_flags()->size()), g->first_patches()->size(), g->second_patches()->size()};
     std::vector<uint32_t> children(v.firstCount, 0), childNodes(v.firstCount, 0);
@@ -735,21 +738,33 @@ std::string innerRowsAtOpenExcess(const std::vector<uint8_t>& flatbuffer) {
         ++children[v.second(q).parent()];
         childNodes[v.second(q).parent()] += v.second(q).node_count();
     }
-    auto tooMany = [](uint32_t f, uint64_t count, const char* what, uint32_t limit) {
+    auto tooMany = [](uint32_t f, uint64_t count, const char* what, uint64_t limit) {
         return "first-layer patch " + std::to_string(f) + " has " + std::to_string(count) + " " + what +
                ", more than the " + std::to_string(limit) +
                " a reader's search holds (bake with more first-layer patches, --n1, or store the rows)";
     };
+    // A patch's inner rows are the distinct active nodes of its second-layer patches
+    // (innerNodesOf), known before the labels: the bake stops before its longest stage.
+    std::vector<std::vector<uint32_t>> childrenOf(v.firstCount);
+    for (uint32_t q = 0; q < v.secondCount; ++q) childrenOf[v.second(q).parent()].push_back(q);
+    std::vector<uint64_t> nodes(v.firstCount, 0);
+    std::vector<uint32_t> counted(v.nodes, UINT32_MAX);  // the patch a node was counted for
     for (uint32_t f = 0; f < v.firstCount; ++f) {
+        for (uint32_t q : childrenOf[f]) {
+            const fb::PatchRecord& r = v.second(q);
+            for (uint32_t j = 0; j < r.node_count(); ++j) {
+                const uint32_t n = v.slot(r.slot_begin() + j);
+                if (!v.active(n) || counted[n] == f) continue;
+                counted[n] = f;
+                ++nodes[f];
+            }
+        }
         const fb::PatchRecord& r = v.first(f);
-        uint64_t nodes = g->hub_inner_begin()->Get(f + 1) - g->hub_inner_begin()->Get(f);
-        for (uint32_t k = 0; k < r.slot_count(); ++k) nodes += v.active(v.slot(r.slot_begin() + k)) ? 0 : 1;
-        if (nodes > VG_INNER_AT_OPEN_MAX_NODES)
-            return tooMany(f, nodes, "inner rows and merged-away slots", VG_INNER_AT_OPEN_MAX_NODES);
-        if (children[f] > VG_INNER_AT_OPEN_MAX_CHILDREN)
-            return tooMany(f, children[f], "second-layer patches", VG_INNER_AT_OPEN_MAX_CHILDREN);
-        if (childNodes[f] > VG_INNER_AT_OPEN_MAX_CHILD_NODES)
-            return tooMany(f, childNodes[f], "node slots in its second-layer patches", VG_INNER_AT_OPEN_MAX_CHILD_NODES);
+        for (uint32_t k = 0; k < r.slot_count(); ++k) nodes[f] += v.active(v.slot(r.slot_begin() + k)) ? 0 : 1;
+        if (nodes[f] > limits.nodes) return tooMany(f, nodes[f], "inner rows and merged-away slots", limits.nodes);
+        if (children[f] > limits.children) return tooMany(f, children[f], "second-layer patches", limits.children);
+        if (childNodes[f] > limits.childNodes)
+            return tooMany(f, childNodes[f], "node slots in its second-layer patches", limits.childNodes);
     }
     return std::string();
 }

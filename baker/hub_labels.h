@@ -98,8 +98,14 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
                            const HubPlanCheck& checkPlan = HubPlanCheck(), HubLabelRuns runs = HubLabelRuns::blocks);
 
 // For a blob that leaves its inner rows to the readers (bake --inner-rows-at-open,
-// schema/vorogeo_inner_rows.h): empty when every first-layer patch of the labelled graph
-// buffer keeps within the format's limits for a reader's search, else what passes them.
-std::string innerRowsAtOpenExcess(const std::vector<uint8_t>& flatbuffer);
+// schema/vorogeo_inner_rows.h): empty when every first-layer patch of the graph buffer
+// (labelled or not yet) keeps within the format's limits for a reader's search, else what
+// passes them. `limits` other than the format's are for the tests.
+struct InnerRowsAtOpenLimits {
+    uint64_t nodes, children, childNodes;
+};
+std::string innerRowsAtOpenExcess(const std::vector<uint8_t>& flatbuffer,
+                                  const InnerRowsAtOpenLimits& limits = InnerRowsAtOpenLimits{
+                                      16384, 4096, 65536});
 
 }  // namespace vorogeo

@@ -4,9 +4,11 @@
 // with the same bits; what is not such a blob is refused.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <string>
 #include <vector>
 
 #define ZSTD_STATIC_LINKING_ONLY  // ZSTD_findDecompressedSize
@@ -17,6 +19,7 @@
 #include "blob_test_helpers.h"
 #include "blob_writer.h"
 #include "generators.h"
+#include "hub_labels.h"
 #include "mesh_io.h"
 #include "runtime_graph.h"
 #include "test_helpers.h"
@@ -195,6 +198,38 @@ TEST_CASE("inner rows at open: vorogeo bake writes such a blob and vorogeo info 
     CHECK(info.out.find("inner entries (computed at open)") != std::string::npos);
     const test::ToolResult json = test::runTool("info " + test::quote(out) + " --json");
     CHECK(json.out.find("\"inner_rows_at_open\":true") != std::string::npos);
+}
+
+TEST_CASE("inner rows at open: the baker names a first-layer patch past a reader's search", "[bake][hub]") {
+    // The format's limits take a mesh of hundreds of thousands of vertices to pass; the check
+    // is the same with smaller ones. Each limit at the largest count a patch of this bake
+    // has passes, one less fails and names the patch and the count.
+    const std::vector<uint8_t> stored = bakeLabelled(bumpyTorus(60, 30), -1.0, false, false);
+    tools::BlobContents c;
+    std::string error;
+    REQUIRE(tools::unpackBlob(stored, c, error));
+    const fb::Graph* g = c.graph();
+    uint64_t rows = 0, children = 0, childNodes = 0;
+    for (uint32_t f = 0; f < g->first_patches()->size(); ++f) {
+        rows = std::max<uint64_t>(rows, g->hub_inner_begin()->Get(f + 1) - g->hub_inner_begin()->Get(f));
+        uint64_t n = 0, slots = 0;
+        for (uint32_t q = 0; q < g->second_patches()->size(); ++q)
+            if (g->second_patches()->Get(q)->parent() == f) ++n, slots += g->second_patches()->Get(q)->node_count();
+        children = std::max(children, n);
+        childNodes = std::max(childNodes, slots);
+    }
+    INFO(rows << " rows, " << children << " second-layer patches, " << childNodes << " node slots at most");
+    REQUIRE(rows > 10);
+    REQUIRE(children > 1);
+    CHECK(innerRowsAtOpenExcess(c.flatbuffer) == "");  // the format's limits
+    CHECK(innerRowsAtOpenExcess(c.flatbuffer, {rows, children, childNodes}) == "");
+    CHECK_THAT(innerRowsAtOpenExcess(c.flatbuffer, {rows - 1, children, childNodes}),
+               Catch::Contains("first-layer patch") && Catch::Contains(std::to_string(rows) + " inner rows") &&
+                   Catch::Contains("--n1"));
+    CHECK_THAT(innerRowsAtOpenExcess(c.flatbuffer, {rows, children - 1, childNodes}),
+               Catch::Contains(std::to_string(children) + " second-layer patches"));
+    CHECK_THAT(innerRowsAtOpenExcess(c.flatbuffer, {rows, children, childNodes - 1}),
+               Catch::Contains(std::to_string(childNodes) + " node slots"));
 }
 
 TEST_CASE("inner rows at open: the bake needs --compact and --hub-labels", "[bake][hub]") {

@@ -733,38 +733,27 @@ std::string innerRowsAtOpenExcess(const std::vector<uint8_t>& flatbuffer, const 
                   "hub_labels.h states the format's limits as the default");
     const fb::Graph* g = fb::GetGraph(flatbuffer.data());
     const View v{g, uint32_t(g->node_flags()->size()), g->first_patches()->size(), g->second_patches()->size()};
-    std::vector<uint32_t> children(v.firstCount, 0), childNodes(v.firstCount, 0);
-    for (uint32_t q = 0; q < v.secondCount; ++q) {
-        ++children[v.second(q).parent()];
-        childNodes[v.second(q).parent()] += v.second(q).node_count();
-    }
+    std::vector<std::vector<uint32_t>> children(v.firstCount);
+    for (uint32_t q = 0; q < v.secondCount; ++q) children[v.second(q).parent()].push_back(q);
     auto tooMany = [](uint32_t f, uint64_t count, const char* what, uint64_t limit) {
         return "first-layer patch " + std::to_string(f) + " has " + std::to_string(count) + " " + what +
                ", more than the " + std::to_string(limit) +
                " a reader's search holds (bake with more first-layer patches, --n1, or store the rows)";
     };
-    // A patch's inner rows are the distinct active nodes of its second-layer patches
-    // (innerNodesOf), known before the labels: the bake stops before its longest stage.
-    std::vector<std::vector<uint32_t>> childrenOf(v.firstCount);
-    for (uint32_t q = 0; q < v.secondCount; ++q) childrenOf[v.second(q).parent()].push_back(q);
-    std::vector<uint64_t> nodes(v.firstCount, 0);
-    std::vector<uint32_t> counted(v.nodes, UINT32_MAX);  // the patch a node was counted for
+    // A patch's inner rows are innerNodesOf its second-layer patches, known before the
+    // labels: the bake stops before its longest stage.
+    std::vector<uint32_t> rows;
     for (uint32_t f = 0; f < v.firstCount; ++f) {
-        for (uint32_t q : childrenOf[f]) {
-            const fb::PatchRecord& r = v.second(q);
-            for (uint32_t j = 0; j < r.node_count(); ++j) {
-                const uint32_t n = v.slot(r.slot_begin() + j);
-                if (!v.active(n) || counted[n] == f) continue;
-                counted[n] = f;
-                ++nodes[f];
-            }
-        }
+        innerNodesOf(v, children[f], rows);
+        uint64_t nodes = rows.size(), childNodes = 0;
         const fb::PatchRecord& r = v.first(f);
-        for (uint32_t k = 0; k < r.slot_count(); ++k) nodes[f] += v.active(v.slot(r.slot_begin() + k)) ? 0 : 1;
-        if (nodes[f] > limits.nodes) return tooMany(f, nodes[f], "inner rows and merged-away slots", limits.nodes);
-        if (children[f] > limits.children) return tooMany(f, children[f], "second-layer patches", limits.children);
-        if (childNodes[f] > limits.childNodes)
-            return tooMany(f, childNodes[f], "node slots in its second-layer patches", limits.childNodes);
+        for (uint32_t k = 0; k < r.slot_count(); ++k) nodes += v.active(v.slot(r.slot_begin() + k)) ? 0 : 1;
+        for (uint32_t q : children[f]) childNodes += v.second(q).node_count();
+        if (nodes > limits.nodes) return tooMany(f, nodes, "inner rows and merged-away slots", limits.nodes);
+        if (children[f].size() > limits.children)
+            return tooMany(f, children[f].size(), "second-layer patches", limits.children);
+        if (childNodes > limits.childNodes)
+            return tooMany(f, childNodes, "node slots in its second-layer patches", limits.childNodes);
     }
     return std::string();
 }

@@ -165,6 +165,17 @@ inline uint32_t patchEdgesEnd(const vg_graph& g, uint32_t i) {
 
 inline bool nodeActive(const vg_graph& g, uint32_t node) { return (g.nodeFlags[node] & kNodeMergedAway) == 0; }
 
+// Position of x among the `count` increasing ids at `ids` (bisection), kNone when absent.
+inline uint32_t sortedIndex(const uint32_t* ids, uint32_t count, uint32_t x) {
+    uint32_t lo = 0, hi = count;
+    while (lo < hi) {
+        const uint32_t mid = lo + (hi - lo) / 2;
+        if (ids[mid] < x) lo = mid + 1;
+        else hi = mid;
+    }
+    return lo < count && ids[lo] == x ? lo : kNone;
+}
+
 // The node id of a vertex, or kNone when it is interior to its patch (or unused).
 inline uint32_t vertexNode(const vg_graph& g, uint32_t v) {
     const uint32_t patch = g.vertexPatch[v];

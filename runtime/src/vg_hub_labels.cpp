@@ -1042,14 +1042,8 @@ float hubBlockBound(const vg_graph& g, vg_workspace& ws, uint32_t x, uint32_t bl
 }
 
 uint32_t innerRow(const vg_graph& g, uint32_t first, uint32_t node) {
-    const uint32_t* nodes = g.hubInnerNode + g.hubInnerBegin[first];
-    uint32_t lo = 0, hi = g.hubInnerBegin[first + 1] - g.hubInnerBegin[first];
-    while (lo < hi) {
-        const uint32_t mid = lo + (hi - lo) / 2;
-        if (nodes[mid] < node) lo = mid + 1;
-        else hi = mid;
-    }
-    return lo < g.hubInnerBegin[first + 1] - g.hubInnerBegin[first] && nodes[lo] == node ? lo : kNone;
+    const uint32_t begin = g.hubInnerBegin[first];
+    return sortedIndex(g.hubInnerNode + begin, g.hubInnerBegin[first + 1] - begin, node);
 }
 
 bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance, float* out,

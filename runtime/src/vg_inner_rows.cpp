@@ -7,6 +7,7 @@
 // is what lets the runtime compute what the baker computed with another search.
 #include "vg_inner_rows.h"
 
+#include "vg_layout.h"
 #include "vorogeo_inner_rows.h"
 
 #if defined(__x86_64__)
@@ -25,7 +26,7 @@ constexpr uint32_t kMaxChildren = VG_INNER_AT_OPEN_MAX_CHILDREN;
 constexpr uint32_t kMaxChildNodes = VG_INNER_AT_OPEN_MAX_CHILD_NODES;
 constexpr double kInf = __builtin_inf();
 
-// The scratch, carved in this order (each part a multiple of 64 bytes).
+// The search's arrays in the scratch.
 struct Search {
     double* dist;             // kMaxNodes x kLanes
     double* key;              // per node: its queue key
@@ -38,60 +39,27 @@ struct Search {
     uint32_t* extraNode;      // local nodes from `rows` on: slots' merged-away nodes
     uint32_t* sourceLocal;    // per slot of f: its node's local id
     uint64_t* order;          // f's slots in the order the blocks take them: (hub, slot)
-    uint32_t heapSize;
+    uint32_t heapSize = 0;
 };
 
-constexpr size_t kDistBytes = size_t(kMaxNodes) * kLanes * sizeof(double);
-constexpr size_t kKeyBytes = size_t(kMaxNodes) * sizeof(double);
-constexpr size_t kHeapBytes = size_t(kMaxNodes) * sizeof(uint32_t);
-constexpr size_t kPendingBytes = size_t(kMaxNodes) * sizeof(uint16_t);
-constexpr size_t kChildrenBytes = size_t(kMaxChildren) * sizeof(uint32_t);
-constexpr size_t kChildBeginBytes = (size_t(kMaxChildren) + 16) * sizeof(uint32_t);
-constexpr size_t kSlotLocalBytes = size_t(kMaxChildNodes) * sizeof(uint32_t);
-constexpr size_t kExtraBytes = size_t(kMaxNodes) * sizeof(uint32_t);
 constexpr uint32_t kMaxSlots = 65536;  // vg_validate bounds a first-layer patch's slots by this
-constexpr size_t kSourceLocalBytes = size_t(kMaxSlots) * sizeof(uint32_t);
-constexpr size_t kOrderBytes = size_t(kMaxSlots) * sizeof(uint64_t);
+constexpr size_t kScratchAlign = 64;
 
-Search carve(void* memory) {
-    unsigned char* p = static_cast<unsigned char*>(memory);
+// Lays the search out in L: measures (L.base null) or carves.
+Search layOut(Layout& L) {
     Search s;
-    s.dist = reinterpret_cast<double*>(p);
-    p += kDistBytes;
-    s.key = reinterpret_cast<double*>(p);
-    p += kKeyBytes;
-    s.heap = reinterpret_cast<uint32_t*>(p);
-    p += kHeapBytes;
-    s.heapAt = reinterpret_cast<uint32_t*>(p);
-    p += kHeapBytes;
-    s.pending = reinterpret_cast<uint16_t*>(p);
-    p += kPendingBytes;
-    s.children = reinterpret_cast<uint32_t*>(p);
-    p += kChildrenBytes;
-    s.childBegin = reinterpret_cast<uint32_t*>(p);
-    p += kChildBeginBytes;
-    s.slotLocal = reinterpret_cast<uint32_t*>(p);
-    p += kSlotLocalBytes;
-    s.extraNode = reinterpret_cast<uint32_t*>(p);
-    p += kExtraBytes;
-    s.sourceLocal = reinterpret_cast<uint32_t*>(p);
-    p += kSourceLocalBytes;
-    s.order = reinterpret_cast<uint64_t*>(p);
-    s.heapSize = 0;
+    s.dist = L.take<double>(uint64_t(kMaxNodes) * kLanes);
+    s.key = L.take<double>(kMaxNodes);
+    s.heap = L.take<uint32_t>(kMaxNodes);
+    s.heapAt = L.take<uint32_t>(kMaxNodes);
+    s.pending = L.take<uint16_t>(kMaxNodes);
+    s.children = L.take<uint32_t>(kMaxChildren);
+    s.childBegin = L.take<uint32_t>(uint64_t(kMaxChildren) + 1);
+    s.slotLocal = L.take<uint32_t>(kMaxChildNodes);
+    s.extraNode = L.take<uint32_t>(kMaxNodes);
+    s.sourceLocal = L.take<uint32_t>(kMaxSlots);
+    s.order = L.take<uint64_t>(kMaxSlots);
     return s;
-}
-
-// Position of `node` among the sorted `nodes`, kNone when absent.
-uint32_t find(const uint32_t* nodes, uint32_t count, uint32_t node) {
-    uint32_t lo = 0, hi = count;
-    while (lo < hi) {
-        const uint32_t mid = lo + (hi - lo) / 2;
-        if (nodes[mid] < node)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo < count && nodes[lo] == node ? lo : kNone;
 }
 
 // The queue: a binary heap by (key, node), a node at most once, its key lowered in place.
@@ -278,7 +246,8 @@ vg_status patchRows(const vg_graph& g, uint32_t f, Search& s, bool avx2) {
         const Patch& p = g.second[q];
         if (childCount == kMaxChildren || p.nodeCount > kMaxChildNodes - childNodes) return VG_ERR_CORRUPT_CONTENT;
         s.children[childCount] = q;
-        for (uint32_t j = 0; j < p.nodeCount; ++j) s.slotLocal[childNodes + j] = find(rowNode, rows, g.slots[p.slotBegin + j]);
+        for (uint32_t j = 0; j < p.nodeCount; ++j)
+            s.slotLocal[childNodes + j] = sortedIndex(rowNode, rows, g.slots[p.slotBegin + j]);
         childNodes += p.nodeCount;
         s.childBegin[++childCount] = childNodes;
     }
@@ -293,7 +262,7 @@ vg_status patchRows(const vg_graph& g, uint32_t f, Search& s, bool avx2) {
         const uint32_t hub = g.nodeHub[b];
         s.order[k] = (uint64_t(hub) << 32) | k;
         if (nodeActive(g, b)) {
-            s.sourceLocal[k] = find(rowNode, rows, b);
+            s.sourceLocal[k] = sortedIndex(rowNode, rows, b);
             if (s.sourceLocal[k] == kNone) return VG_ERR_CORRUPT_CONTENT;
             continue;
         }
@@ -331,7 +300,7 @@ vg_status patchRows(const vg_graph& g, uint32_t f, Search& s, bool avx2) {
                 const Membership& ms = g.nodeSecond[m];
                 const Patch& p = g.second[ms.patch];
                 if (p.parent != f) continue;
-                const uint32_t c = find(s.children, childCount, ms.patch);
+                const uint32_t c = sortedIndex(s.children, childCount, ms.patch);
                 const uint32_t* to = s.slotLocal + s.childBegin[c];
                 const uint64_t row = nodeRowStart(p, ms.slot);
 #if VG_INNER_AVX2
@@ -360,12 +329,14 @@ vg_status patchRows(const vg_graph& g, uint32_t f, Search& s, bool avx2) {
 }  // namespace
 
 size_t innerRowsScratchSize() {
-    return kDistBytes + kKeyBytes + 2 * kHeapBytes + kPendingBytes + kChildrenBytes + kChildBeginBytes +
-           kSlotLocalBytes + kExtraBytes + kSourceLocalBytes + kOrderBytes;
+    Layout L{nullptr, kScratchAlign};
+    layOut(L);
+    return L.used;
 }
 
 vg_status computeInnerRows(const vg_graph& g, bool avx2, void* scratch) {
-    Search s = carve(scratch);
+    Layout L{static_cast<unsigned char*>(scratch), kScratchAlign};
+    Search s = layOut(L);
     for (uint32_t f = 0; f < g.firstCount; ++f) {
         const vg_status st = patchRows(g, f, s, avx2);
         if (st != VG_OK) return st;

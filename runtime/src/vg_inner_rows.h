@@ -9,7 +9,7 @@
 
 namespace vg {
 
-// Scratch for computeInnerRows, 64-byte aligned: fixed, the format bounding a patch's
+// Scratch for computeInnerRows, 64-byte aligned (its parts are aligned from its start): fixed, the format bounding a patch's
 // search (~3.5 MB).
 size_t innerRowsScratchSize();
 

@@ -6,6 +6,7 @@
 #include "vg_field_kernels.h"
 #include "vg_huge_pages.h"
 #include "vg_hub_labels.h"
+#include "vg_layout.h"
 
 #include <string.h>
 
@@ -13,6 +14,7 @@ namespace {
 
 constexpr size_t kAlign = 16;
 using vg::kMaxPatchSlots;
+using vg::Layout;
 
 // One past the last node slot of any second-layer patch.
 uint64_t secondNodeSlotEnd(const vg_graph& g) {
@@ -56,19 +58,6 @@ uint64_t hubBlockCount(const vg_graph& g) {
     for (uint32_t t = 0; t < g.hubTreeCount; ++t) n += vg::hubBlocksOf(g.hubTree[t]);
     return n;
 }
-
-struct Layout {
-    unsigned char* base;  // nullptr while only measuring
-    size_t used = 0;
-
-    template <class T>
-    T* take(uint64_t count) {
-        used = (used + kAlign - 1) & ~(kAlign - 1);
-        T* p = base ? reinterpret_cast<T*>(base + used) : nullptr;
-        used += size_t(count * sizeof(T));
-        return p;
-    }
-};
 
 void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     vg_workspace* w = L.take<vg_workspace>(1);
@@ -286,7 +275,7 @@ namespace {
 
 // Bytes the arrays take from the aligned start of a workspace's memory.
 size_t layoutBytes(const vg_graph& g) {
-    Layout L{nullptr};
+    Layout L{nullptr, kAlign};
     assign(g, L, nullptr);
     return L.used;
 }
@@ -312,7 +301,7 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
     // fault (on a huge page, 2 MB cleared: about 1 ms on igea's test machine), which would
     // land on the first queries of a workspace as latency spikes.
     memset(base, 0, used);
-    Layout L{base};
+    Layout L{base, kAlign};
     vg_workspace* ws = reinterpret_cast<vg_workspace*>(base);
     assign(*graph, L, ws);
     clearStamps(*ws);

@@ -365,76 +365,87 @@ void prefetchRows(const vg_graph& g, const HubBlockRef& r, const SideRows& side,
         _mm_prefetch(reinterpret_cast<const char*>(columnRow(g, r, side.exits[rows[m]].hub)), _MM_HINT_T0);
 }
 
-// The same numbers; each block's exits are found the turn before its own, for its
-// prefetch (two scratch buffers, `rows` and `nextRows`, take turns).
+// The rows of one side that the next blocks read, found and asked for kRowLookahead blocks
+// ahead (kRowBuffers buffers in turn, each hubBlockRowsEach entries of the workspace).
+struct RowsAhead {
+    uint16_t* buffers;
+    uint64_t each;
+    uint32_t count[kRowBuffers];
+    uint16_t* rows(uint32_t block) { return buffers + (block % kRowBuffers) * each; }
+    uint32_t& countOf(uint32_t block) { return count[block % kRowBuffers]; }
+    // Block i's rows, or none when `read` is false (the block is skipped).
+    void find(const vg_graph& g, const SideRows& side, const HubBlockRef* blocks, uint32_t i, bool read) {
+        countOf(i) = read ? blockRows(g, side, blocks[i], rows(i)) : 0;
+        prefetchRows(g, blocks[i], side, rows(i), countOf(i));
+    }
+};
+
+// The same numbers as sourceColumns.
 VG_AVX2_TARGET void sourceColumnsAvx2(const vg_graph& g, const SideRows& side, const HubBlockRef* blocks,
-                                      uint32_t blockCount, uint16_t* rows, uint16_t* nextRows, uint16_t* d) {
-    uint32_t n = blockCount > 0 ? blockRows(g, side, blocks[0], rows) : 0;
+                                      uint32_t blockCount, RowsAhead& ahead, uint16_t* d) {
+    for (uint32_t i = 0; i < kRowLookahead && i < blockCount; ++i) ahead.find(g, side, blocks, i, true);
     for (uint32_t i = 0; i < blockCount; ++i) {
-        const HubBlockRef r = blocks[i];
-        uint32_t nextN = 0;
-        if (i + 1 < blockCount) {  // loads while this block adds
-            nextN = blockRows(g, side, blocks[i + 1], nextRows);
-            prefetchRows(g, blocks[i + 1], side, nextRows, nextN);
-        }
+        if (i + kRowLookahead < blockCount) ahead.find(g, side, blocks, i + kRowLookahead, true);
+        const HubBlockRef& r = blocks[i];
+        const uint16_t* rows = ahead.rows(i);
         __m256i acc = _mm256_set1_epi16(-1);
-        for (uint32_t m = 0; m < n; ++m) {
+        for (uint32_t m = 0, n = ahead.countOf(i); m < n; ++m) {
             const HubExit& e = side.exits[rows[m]];
             const __m256i row = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(columnRow(g, r, e.hub)));
             acc = _mm256_min_epu16(acc, _mm256_adds_epu16(row, _mm256_set1_epi16(short(e.steps))));
         }
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + uint64_t(i) * kHubBlock), acc);
-        uint16_t* t = rows;
-        rows = nextRows;
-        nextRows = t;
-        n = nextN;
     }
 }
 
+// Whether the target side reads block i (outOfRoom), from the source's distances d.
+VG_AVX2_TARGET inline bool blockRead(const vg_graph& g, const uint16_t* d, const HubBlockRef* blocks, uint32_t i) {
+    return !outOfRoom(g, blocks[i], lanesMinimum(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(d + uint64_t(i) * kHubBlock))));
+}
+
+// The same numbers as targetColumns; whether a block is read is known from d before any of
+// them is, so the rows of skipped blocks are neither found nor asked for.
 VG_AVX2_TARGET void targetColumnsAvx2(const vg_graph& g, const uint16_t* d, const SideRows& side,
-                                      const HubBlockRef* blocks, uint32_t blockCount, uint16_t* rows,
-                                      uint16_t* nextRows, uint16_t* acc) {
+                                      const HubBlockRef* blocks, uint32_t blockCount, RowsAhead& ahead,
+                                      uint16_t* acc) {
     const __m256i none = _mm256_set1_epi16(-1);
     for (uint32_t e = 0; e < side.count; ++e) _mm256_storeu_si256(reinterpret_cast<__m256i*>(acc + uint64_t(e) * kHubBlock), none);
-    uint32_t n = blockCount > 0 ? blockRows(g, side, blocks[0], rows) : 0;  // as in sourceColumnsAvx2
+    for (uint32_t i = 0; i < kRowLookahead && i < blockCount; ++i) ahead.find(g, side, blocks, i, blockRead(g, d, blocks, i));
     for (uint32_t i = 0; i < blockCount; ++i) {
-        const HubBlockRef r = blocks[i];
+        if (i + kRowLookahead < blockCount)
+            ahead.find(g, side, blocks, i + kRowLookahead, blockRead(g, d, blocks, i + kRowLookahead));
+        const HubBlockRef& r = blocks[i];
         const __m256i di = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(d + uint64_t(i) * kHubBlock));
-        const bool read = !outOfRoom(g, r, lanesMinimum(di));
-        uint32_t nextN = 0;
-        if (i + 1 < blockCount) {
-            nextN = blockRows(g, side, blocks[i + 1], nextRows);
-            if (read) prefetchRows(g, blocks[i + 1], side, nextRows, nextN);
-        }
-        for (uint32_t m = 0; read && m < n; ++m) {
+        const uint16_t* rows = ahead.rows(i);
+        for (uint32_t m = 0, n = ahead.countOf(i); m < n; ++m) {
             const __m256i row = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(columnRow(g, r, side.exits[rows[m]].hub)));
             __m256i* a = reinterpret_cast<__m256i*>(acc + uint64_t(rows[m]) * kHubBlock);
             _mm256_storeu_si256(a, _mm256_min_epu16(_mm256_loadu_si256(a), _mm256_adds_epu16(row, di)));
         }
-        uint16_t* t = rows;
-        rows = nextRows;
-        nextRows = t;
-        n = nextN;
     }
 }
 #endif
 
 void sourceColumnsOn(const vg_graph& g, const vg_workspace& ws, const SideRows& side, const HubBlockRef* blocks,
                      uint32_t blockCount, uint16_t* d) {
-    uint16_t* rows = ws.hubBlockRows;
 #if VG_HUB_AVX2
-    if (g.avx2) return sourceColumnsAvx2(g, side, blocks, blockCount, rows, rows + ws.hubBlockRowsHalf, d);
+    if (g.avx2) {
+        RowsAhead ahead{ws.hubBlockRows, ws.hubBlockRowsEach, {}};
+        return sourceColumnsAvx2(g, side, blocks, blockCount, ahead, d);
+    }
 #endif
-    sourceColumns(g, side, blocks, blockCount, rows, d);
+    sourceColumns(g, side, blocks, blockCount, ws.hubBlockRows, d);
 }
 
 void targetColumnsOn(const vg_graph& g, const vg_workspace& ws, const uint16_t* d, const SideRows& side,
                      const HubBlockRef* blocks, uint32_t blockCount, uint16_t* acc) {
-    uint16_t* rows = ws.hubBlockRows;
 #if VG_HUB_AVX2
-    if (g.avx2) return targetColumnsAvx2(g, d, side, blocks, blockCount, rows, rows + ws.hubBlockRowsHalf, acc);
+    if (g.avx2) {
+        RowsAhead ahead{ws.hubBlockRows, ws.hubBlockRowsEach, {}};
+        return targetColumnsAvx2(g, d, side, blocks, blockCount, ahead, acc);
+    }
 #endif
-    targetColumns(g, d, side, blocks, blockCount, rows, acc);
+    targetColumns(g, d, side, blocks, blockCount, ws.hubBlockRows, acc);
 }
 
 // Asks for what a query will read of side x's exit lists on the common tree path (down to
@@ -738,6 +749,15 @@ void tighten(const vg_graph& g, const PathBounds& b, HubBlockRef& r) {
     r.landmarks = kNone;
 }
 
+// Asks for block r's bounds record, unless it was read already.
+inline void prefetchBounds(const vg_graph& g, const HubBlockRef& r) {
+    if (r.landmarks == kNone) return;
+    const float* block = g.hubBlockBounds + uint64_t(r.landmarks) * (4 + 2 * g.landmarkCount);
+    const char* end = reinterpret_cast<const char*>(block + 4 + 2 * g.landmarkCount);
+    for (const char* p = reinterpret_cast<const char*>(block); p < end; p += 64) __builtin_prefetch(p);
+    __builtin_prefetch(end - 1);
+}
+
 // Whether a path from s to t through block r's hubs may be no longer than `upper`: its
 // sphere bound first, its landmark ranges only if that passes.
 inline bool mayPass(const vg_graph& g, const PathBounds& b, HubBlockRef& r, float upper) {
@@ -786,7 +806,13 @@ uint32_t blocksWithin(const vg_graph& g, const PathBounds& bounds, HubBlockRef* 
                       float upper) {
     if (upper == __builtin_inff()) return count;
     uint32_t kept = 0;
+    // The bounds records a few blocks ahead (as in hubToHub): one miss each otherwise.
+    auto ask = [&](uint32_t i) {
+        if (i < count && !(blocks[i].throughBound > upper)) prefetchBounds(g, blocks[i]);
+    };
+    for (uint32_t i = 0; i < 2 * kRowLookahead; ++i) ask(i);
     for (uint32_t i = 0; i < count; ++i) {
+        ask(i + 2 * kRowLookahead);
         HubBlockRef& r = blocks[i];
         if (r.throughBound > upper) continue;
         tighten(g, bounds, r);
@@ -926,8 +952,28 @@ uint16_t hubToHub(const vg_graph& g, const PathBounds& bounds, HubBlockRef* bloc
     for (uint32_t i = 1; i < count; ++i)
         if (blocks[i].throughBound < blocks[likeliest].throughBound) likeliest = i;
     if (count > 0) meet(likeliest);
-    for (uint32_t i = 0; i < count; ++i)
-        if (i != likeliest && (everyBlock || mayPass(g, bounds, blocks[i], bestDistance()))) meet(i);
+    // Each block's bounds record is asked for 2 kRowLookahead blocks ahead, and its two rows
+    // once those bounds let it pass, kRowLookahead ahead: each is a miss of its own (on the
+    // larger graphs mostly from memory), and one after the other they were most of this
+    // loop's time. A block is met or skipped on the bounds and the best sum it meets as
+    // before (tighten() only computes), so the result is the same.
+    auto passes = [&](uint32_t i) { return i != likeliest && (everyBlock || mayPass(g, bounds, blocks[i], bestDistance())); };
+    auto askBounds = [&](uint32_t i) {
+        if (i < count && blocks[i].throughBound < bestDistance()) prefetchBounds(g, blocks[i]);
+    };
+    auto askRows = [&](uint32_t i) {
+        if (i < count && passes(i)) {
+            __builtin_prefetch(columnRow(g, blocks[i], a));
+            __builtin_prefetch(columnRow(g, blocks[i], b));
+        }
+    };
+    for (uint32_t i = 0; i < 2 * kRowLookahead; ++i) askBounds(i);
+    for (uint32_t i = 0; i < kRowLookahead; ++i) askRows(i);
+    for (uint32_t i = 0; i < count; ++i) {
+        askBounds(i + 2 * kRowLookahead);
+        askRows(i + kRowLookahead);
+        if (passes(i)) meet(i);
+    }
     return best;
 }
 
@@ -938,6 +984,8 @@ uint16_t hubToHub(const vg_graph& g, const PathBounds& bounds, HubBlockRef* bloc
 float tighterUpper(const vg_graph& g, vg_workspace& ws, uint32_t blockCount, const uint16_t* d, uint32_t hubT,
                    uint16_t baseT, float extra, float upper) {
     uint16_t best = kNoStep;
+    for (uint32_t i = 0; i < blockCount; ++i)  // all asked for first: one miss each
+        if (inBlock(ws.hubBlocks[i], hubT)) __builtin_prefetch(columnRow(g, ws.hubBlocks[i], hubT));
     for (uint32_t i = 0; i < blockCount; ++i) {
         const HubBlockRef& r = ws.hubBlocks[i];
         if (!inBlock(r, hubT)) continue;

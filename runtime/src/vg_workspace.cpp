@@ -126,9 +126,9 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.hubFirstLandmarks = L.take<uint64_t>(g.hubTreeCount ? g.firstCount : 0);
     o.hubBlocks = L.take<vg::HubBlockRef>(pathBlocks);
     o.hubBlocksAbove = L.take<uint32_t>(g.hubTreeCount);
-    // Two blocks' rows of one side: every exit once, or each of its patches' lists.
-    o.hubBlockRowsHalf = g.hubTreeCount ? uint64_t(vg::kMaxSidePatches) * (patchSlots + 1) : 0;
-    o.hubBlockRows = L.take<uint16_t>(2 * o.hubBlockRowsHalf);
+    // kRowBuffers blocks' rows of one side: every exit once, or each of its patches' lists.
+    o.hubBlockRowsEach = g.hubTreeCount ? uint64_t(vg::kMaxSidePatches) * (patchSlots + 1) : 0;
+    o.hubBlockRows = L.take<uint16_t>(vg::kRowBuffers * o.hubBlockRowsEach);
     o.hubPatchReach = L.take<float>(g.hubTreeCount ? g.secondCount : 0);
     o.hubInnerRowOfSlot = L.take<uint32_t>(g.hubTreeCount ? secondNodeSlotEnd(g) : 0);
     o.graph = &g;

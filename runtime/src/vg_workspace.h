@@ -259,8 +259,8 @@ struct vg_workspace {
                                    //     (filled at init),
     vg::HubBlockRef* hubBlocks;    // ... and the blocks of the common tree path a query reads,
     uint32_t* hubBlocksAbove;      // ... per tree node the blocks of its proper ancestors (filled at init),
-    uint16_t* hubBlockRows;        // ... a side's exits with rows in a block, two halves (this block's
-    uint64_t hubBlockRowsHalf;     //     and the next one's) of this many entries,
+    uint16_t* hubBlockRows;        // ... a side's exits with rows in a block, for the block at hand and
+    uint64_t hubBlockRowsEach;     //     kRowLookahead more (kRowBuffers parts of this many entries),
     float* hubPatchReach;          // ... per second-layer patch its longest node edge (filled at init)
     uint32_t* hubInnerRowOfSlot;   // ... per node slot of a second-layer patch its node's inner row in
                                    //     the patch's first-layer patch, kNone if none (filled at init)
@@ -277,6 +277,12 @@ constexpr uint32_t kRecordLanes = 8;
 // A label query side reads the exit lists of at most this many second-layer patches (an
 // endpoint on more patches' borders reads every exit's rows instead).
 constexpr uint32_t kMaxSidePatches = 8;
+// The label kernels find a block's rows and ask for them this many blocks before they add
+// them (and bounds records twice as far ahead): a block's rows are a few dozen misses, its
+// sums far shorter than one. One block ahead was ~6% slower at p50 on igea; 3 and 6
+// measured the same (BENCHMARKS.md, session 40).
+constexpr uint32_t kRowLookahead = 3;
+constexpr uint32_t kRowBuffers = kRowLookahead + 1;
 inline float& slotPosition(float* positions, uint64_t candidate, uint64_t axis) {
     return positions[(candidate / kRecordLanes) * kRecordLanes * 3 + axis * kRecordLanes + candidate % kRecordLanes];
 }

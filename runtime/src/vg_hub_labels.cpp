@@ -373,6 +373,16 @@ struct RowsAhead {
     uint32_t count[kRowBuffers];
     uint16_t* rows(uint32_t block) { return buffers + (block % kRowBuffers) * each; }
     uint32_t& countOf(uint32_t block) { return count[block % kRowBuffers]; }
+    // Asks for the exit lists of block i (its rows come kRowLookahead blocks later).
+    void askLists(const vg_graph& g, const SideRows& side, const HubBlockRef* blocks, uint32_t i) const {
+        for (uint32_t p = 0; p < side.listCount; ++p) {
+            const uint32_t list = side.listStart[p] + blocks[i].pathIndex;
+            const char* from = reinterpret_cast<const char*>(g.hubExitLists + g.hubExitListBegin[list]);
+            const char* to = reinterpret_cast<const char*>(g.hubExitLists + g.hubExitListBegin[list + 1]);
+            for (; from < to; from += 64) __builtin_prefetch(from);
+            __builtin_prefetch(to - 1);
+        }
+    }
     // Block i's rows, or none when `read` is false (the block is skipped).
     void find(const vg_graph& g, const SideRows& side, const HubBlockRef* blocks, uint32_t i, bool read) {
         countOf(i) = read ? blockRows(g, side, blocks[i], rows(i)) : 0;
@@ -383,8 +393,10 @@ struct RowsAhead {
 // The same numbers as sourceColumns.
 VG_AVX2_TARGET void sourceColumnsAvx2(const vg_graph& g, const SideRows& side, const HubBlockRef* blocks,
                                       uint32_t blockCount, RowsAhead& ahead, uint16_t* d) {
+    for (uint32_t i = 0; i < 2 * kRowLookahead && i < blockCount; ++i) ahead.askLists(g, side, blocks, i);
     for (uint32_t i = 0; i < kRowLookahead && i < blockCount; ++i) ahead.find(g, side, blocks, i, true);
     for (uint32_t i = 0; i < blockCount; ++i) {
+        if (i + 2 * kRowLookahead < blockCount) ahead.askLists(g, side, blocks, i + 2 * kRowLookahead);
         if (i + kRowLookahead < blockCount) ahead.find(g, side, blocks, i + kRowLookahead, true);
         const HubBlockRef& r = blocks[i];
         const uint16_t* rows = ahead.rows(i);
@@ -410,8 +422,10 @@ VG_AVX2_TARGET void targetColumnsAvx2(const vg_graph& g, const uint16_t* d, cons
                                       uint16_t* acc) {
     const __m256i none = _mm256_set1_epi16(-1);
     for (uint32_t e = 0; e < side.count; ++e) _mm256_storeu_si256(reinterpret_cast<__m256i*>(acc + uint64_t(e) * kHubBlock), none);
+    for (uint32_t i = 0; i < 2 * kRowLookahead && i < blockCount; ++i) ahead.askLists(g, side, blocks, i);
     for (uint32_t i = 0; i < kRowLookahead && i < blockCount; ++i) ahead.find(g, side, blocks, i, blockRead(g, d, blocks, i));
     for (uint32_t i = 0; i < blockCount; ++i) {
+        if (i + 2 * kRowLookahead < blockCount) ahead.askLists(g, side, blocks, i + 2 * kRowLookahead);
         if (i + kRowLookahead < blockCount)
             ahead.find(g, side, blocks, i + kRowLookahead, blockRead(g, d, blocks, i + kRowLookahead));
         const HubBlockRef& r = blocks[i];

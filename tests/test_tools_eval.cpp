@@ -124,13 +124,15 @@ TEST_CASE("vorogeo bench, render and voronoi run on a baked mesh", "[tools][cli]
     REQUIRE(r.status == 0);
     for (const char* key : {"sssd_p50_us", "sssd_p99_us", "bidirectional_sssd_p50_us", "bidirectional_sssd_p99_us",
                             "msad_p50_ms", "exact_ssad_p50_ms", "exact_sssd_p50_ms", "dijkstra_sssd_p50_us",
-                            "dijkstra_ssad_p50_ms", "field_mean_rel_error", "open_ms"})
+                            "dijkstra_ssad_p50_ms", "field_mean_rel_error", "open_ms", "fixed_work_p50_us",
+                            "fixed_work_p99_us"})
         CHECK_THAT(r.out, Catch::Contains(std::string("\"") + key + "\":"));
     r = test::runTool("bench " + mesh + " " + blob + " --pairs 50 --sources 2 --json --runtime-only");
     INFO(r.out << r.err);
     REQUIRE(r.status == 0);
     CHECK_THAT(r.out, Catch::Contains("\"sssd_p50_us\":") && Catch::Contains("\"msad_p50_ms\":") &&
-                          Catch::Contains("\"bidirectional_sssd_p50_us\":") && Catch::Contains("\"open_ms\":"));
+                          Catch::Contains("\"bidirectional_sssd_p50_us\":") && Catch::Contains("\"open_ms\":") &&
+                          Catch::Contains("\"fixed_work_p99_us\":"));
     CHECK_THAT(r.out, !Catch::Contains("exact_ssad_p50_ms"));
     CHECK_THAT(r.out, Catch::Contains("\"turn_pairs\":500,"));  // the default turn
     r = test::runTool("bench " + mesh + " " + blob + " --pairs 50 --sources 1 --json --runtime-only --turn 7");

@@ -28,6 +28,15 @@ inline double percentile(std::vector<double> values, double p) {
     return values[rank - 1];
 }
 
+// The machine's own timing noise at one duration: a fixed chain of arithmetic calibrated to
+// take about `micros` microseconds, timed `runs` times. On a quiet host its p99 is close to
+// its p50; a virtual machine's timer interrupts (~50 us each, every millisecond on the
+// 2-core test machine, BENCHMARKS.md) lift the p99 of any work that long, queries included.
+struct FixedWorkTiming {
+    double p50Us, p99Us;
+};
+FixedWorkTiming fixedWorkTiming(double micros, int runs = 2000);
+
 // Peak resident set size of this process so far, in megabytes.
 double peakRssMb();
 

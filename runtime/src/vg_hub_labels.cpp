@@ -655,53 +655,78 @@ void endpointBounds(const vg_graph& g, const vg_workspace& ws, uint32_t x, const
     landmarkDistances(g, x, b.landmarks);
 }
 
-// A lower bound of d(x, h) for the hubs h of block b (its sphere and landmark ranges).
-float blockBoundTo(const vg_graph& g, const float* block, const EndpointBounds& x) {
-    const float dx = block[0] - x.position[0], dy = block[1] - x.position[1], dz = block[2] - x.position[2];
-    float best = __builtin_sqrtf(dx * dx + dy * dy + dz * dz) - block[3];
+// A block's bounds as the query reads them: its sphere (centre, radius) and its landmark
+// ranges in steps (the workspace's copies, vg_workspace.h).
+struct BlockBounds {
+    const float* sphere;
+    const uint16_t* ranges;
+};
+inline BlockBounds blockBounds(const vg_graph& g, const vg_workspace& ws, uint32_t block) {
+    return BlockBounds{ws.hubBlockSpheres + 4 * uint64_t(block),
+                       ws.hubBlockRanges + uint64_t(blockRangeStride(g.landmarkCount)) * block};
+}
+
+// A range end in landmark steps as a distance (the same product in every kernel).
+inline float rangeLow(const vg_graph& g, const uint16_t* ranges, uint32_t k) {
+    return float(ranges[k]) * g.landmarkScale[k];
+}
+inline float rangeHigh(const vg_graph& g, const uint16_t* ranges, uint32_t k) {
+    const uint16_t q = ranges[g.landmarkCount + k];
+    return q == kNoRangeEnd ? __builtin_inff() : float(q) * g.landmarkScale[k];
+}
+
+// A lower bound of d(x, h) for the hubs h of a block (its sphere and landmark ranges).
+float blockBoundTo(const vg_graph& g, const BlockBounds& block, const EndpointBounds& x) {
+    const float* c = block.sphere;
+    const float dx = c[0] - x.position[0], dy = c[1] - x.position[1], dz = c[2] - x.position[2];
+    float best = __builtin_sqrtf(dx * dx + dy * dy + dz * dz) - c[3];
     for (uint32_t k = 0; k < g.landmarkCount; ++k) {
-        const float lo = block[4 + 2 * k], hi = block[5 + 2 * k], d = x.landmarks[k];
+        const float lo = rangeLow(g, block.ranges, k), hi = rangeHigh(g, block.ranges, k), d = x.landmarks[k];
         if (d == __builtin_inff()) continue;
         const float below = lo - d, above = d - hi;
         const float b = (below > above ? below : above) - (2.0f * g.landmarkScale[k] + x.slack);
-        if (b > best) best = b;  // an unbounded range (-inf, +inf) never is
+        if (b > best) best = b;  // a range without ends [0, +inf) never is a positive one
     }
     return best > 0.0f ? best : 0.0f;
 }
 
 #if VG_HUB_AVX2
-// The landmark part of blockBoundTo eight landmarks at a time. A block's ranges lie as
-// (lo, hi) pairs; two loads and two shuffles split them into lanes holding landmarks
-// {0, 1, 4, 5, 2, 3, 6, 7} of each group of eight, the order of LandmarkLanes.
+// The landmark part of blockBoundTo eight landmarks at a time, one lane each.
 struct LandmarkLanes {
-    alignas(32) float distance[kMaxLandmarks];  // the endpoint's; +inf: no bound (or no landmark)
+    alignas(32) float distance[kMaxLandmarks];   // the endpoint's; +inf: no bound (or no landmark)
     alignas(32) float allowance[kMaxLandmarks];  // two landmark steps and the endpoint's slack
+    alignas(32) float scale[kMaxLandmarks];      // the landmarks' step lengths
 };
-constexpr uint32_t kLaneLandmark[8] = {0, 1, 4, 5, 2, 3, 6, 7};
 
 void landmarkLanes(const vg_graph& g, const EndpointBounds& x, LandmarkLanes& out) {
-    for (uint32_t k0 = 0; k0 < g.landmarkCount; k0 += 8)
-        for (uint32_t i = 0; i < 8; ++i) {
-            const uint32_t k = k0 + kLaneLandmark[i];
-            out.distance[k0 + i] = k < g.landmarkCount ? x.landmarks[k] : __builtin_inff();
-            out.allowance[k0 + i] = k < g.landmarkCount ? 2.0f * g.landmarkScale[k] + x.slack : 0.0f;
-        }
+    const uint32_t groups = (g.landmarkCount + 7) / 8 * 8;
+    for (uint32_t k = 0; k < groups; ++k) {
+        const bool real = k < g.landmarkCount;
+        out.distance[k] = real ? x.landmarks[k] : __builtin_inff();
+        out.allowance[k] = real ? 2.0f * g.landmarkScale[k] + x.slack : 0.0f;
+        out.scale[k] = real ? g.landmarkScale[k] : 0.0f;
+    }
 }
 
 // The same numbers as blockBoundTo: the same operations on each landmark, and a maximum.
-VG_AVX2_TARGET float blockBoundToAvx2(const vg_graph& g, const float* block, const EndpointBounds& x,
+// A partial last group reads past its landmarks' low and high ends, inside the block's
+// entries (blockRangeStride); those lanes have no distance and count for nothing.
+VG_AVX2_TARGET float blockBoundToAvx2(const vg_graph& g, const BlockBounds& block, const EndpointBounds& x,
                                       const LandmarkLanes& lanes) {
-    const float dx = block[0] - x.position[0], dy = block[1] - x.position[1], dz = block[2] - x.position[2];
-    const float sphere = __builtin_sqrtf(dx * dx + dy * dy + dz * dz) - block[3];
+    const float* c = block.sphere;
+    const float dx = c[0] - x.position[0], dy = c[1] - x.position[1], dz = c[2] - x.position[2];
+    const float sphere = __builtin_sqrtf(dx * dx + dy * dy + dz * dz) - c[3];
     const __m256 inf = _mm256_set1_ps(__builtin_inff()), none = _mm256_set1_ps(-__builtin_inff());
-    const __m256i index = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m256i noEnd = _mm256_set1_epi32(kNoRangeEnd);
     __m256 best = none;
     for (uint32_t k = 0; k < g.landmarkCount; k += 8) {
-        // Only this group's floats are read: the last block of the table may end right after them.
-        const int floats = int(2 * (g.landmarkCount - k < 8 ? g.landmarkCount - k : 8));
-        const __m256 v0 = _mm256_maskload_ps(block + 4 + 2 * k, _mm256_cmpgt_epi32(_mm256_set1_epi32(floats), index));
-        const __m256 v1 = _mm256_maskload_ps(block + 12 + 2 * k, _mm256_cmpgt_epi32(_mm256_set1_epi32(floats - 8), index));
-        const __m256 lo = _mm256_shuffle_ps(v0, v1, 0x88), hi = _mm256_shuffle_ps(v0, v1, 0xDD);
+        const __m256 scale = _mm256_load_ps(lanes.scale + k);
+        const __m256i loSteps = _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(block.ranges + k)));
+        const __m256i hiSteps = _mm256_cvtepu16_epi32(
+            _mm_loadu_si128(reinterpret_cast<const __m128i*>(block.ranges + g.landmarkCount + k)));
+        const __m256 lo = _mm256_mul_ps(_mm256_cvtepi32_ps(loSteps), scale);
+        const __m256 hi = _mm256_blendv_ps(_mm256_mul_ps(_mm256_cvtepi32_ps(hiSteps), scale), inf,
+                                           _mm256_castsi256_ps(_mm256_cmpeq_epi32(hiSteps, noEnd)));
         const __m256 d = _mm256_load_ps(lanes.distance + k);
         const __m256 below = _mm256_sub_ps(lo, d), above = _mm256_sub_ps(d, hi);
         const __m256 wider = _mm256_blendv_ps(above, below, _mm256_cmp_ps(below, above, _CMP_GT_OQ));
@@ -716,18 +741,22 @@ VG_AVX2_TARGET float blockBoundToAvx2(const vg_graph& g, const float* block, con
 }
 #endif
 
-// Both endpoints' bounds as the block bounds take them (with AVX2, the landmarks in lanes).
+// Both endpoints' bounds as the block bounds take them (with AVX2, the landmarks in lanes),
+// and the workspace the blocks' bounds are read from.
 struct PathBounds {
     const EndpointBounds* s;
     const EndpointBounds* t;
+    const vg_workspace* ws;
 #if VG_HUB_AVX2
     LandmarkLanes lanesS, lanesT;
 #endif
 };
 
-void preparePathBounds(const vg_graph& g, const EndpointBounds& bs, const EndpointBounds& bt, PathBounds& out) {
+void preparePathBounds(const vg_graph& g, const vg_workspace& ws, const EndpointBounds& bs, const EndpointBounds& bt,
+                       PathBounds& out) {
     out.s = &bs;
     out.t = &bt;
+    out.ws = &ws;
 #if VG_HUB_AVX2
     if (g.avx2) {
         landmarkLanes(g, bs, out.lanesS);
@@ -746,10 +775,10 @@ inline float sphereBoundTo(const float* sphere, const float* x) {
     return d > 0.0f ? d : 0.0f;
 }
 
-// Block r's bounds from its whole record (sphere and landmark ranges), once.
+// Block r's bounds from its sphere and landmark ranges, once.
 void tighten(const vg_graph& g, const PathBounds& b, HubBlockRef& r) {
     if (r.landmarks == kNone) return;
-    const float* block = g.hubBlockBounds + uint64_t(r.landmarks) * (4 + 2 * g.landmarkCount);
+    const BlockBounds block = blockBounds(g, *b.ws, r.landmarks);
 #if VG_HUB_AVX2
     if (g.avx2) {
         r.toTargetBound = blockBoundToAvx2(g, block, *b.t, b.lanesT) * kBoundShrink;
@@ -763,13 +792,13 @@ void tighten(const vg_graph& g, const PathBounds& b, HubBlockRef& r) {
     r.landmarks = kNone;
 }
 
-// Asks for block r's bounds record, unless it was read already.
-inline void prefetchBounds(const vg_graph& g, const HubBlockRef& r) {
+// Asks for block r's landmark ranges (one cache line up to 16 landmarks), unless they were
+// read already.
+inline void prefetchBounds(const vg_graph& g, const PathBounds& b, const HubBlockRef& r) {
     if (r.landmarks == kNone) return;
-    const float* block = g.hubBlockBounds + uint64_t(r.landmarks) * (4 + 2 * g.landmarkCount);
-    const char* end = reinterpret_cast<const char*>(block + 4 + 2 * g.landmarkCount);
-    for (const char* p = reinterpret_cast<const char*>(block); p < end; p += 64) __builtin_prefetch(p);
-    __builtin_prefetch(end - 1);
+    const uint32_t stride = blockRangeStride(g.landmarkCount);
+    const char* ranges = reinterpret_cast<const char*>(b.ws->hubBlockRanges + uint64_t(stride) * r.landmarks);
+    for (uint32_t at = 0; at < stride * 2; at += 64) __builtin_prefetch(ranges + at);
 }
 
 // Whether a path from s to t through block r's hubs may be no longer than `upper`: its
@@ -826,7 +855,7 @@ uint32_t blocksWithin(const vg_graph& g, const PathBounds& bounds, HubBlockRef* 
     for (uint32_t i = 0; i < count; ++i) {
         for (; asked < 2 * kRowLookahead && scan < count; ++scan)
             if (!(blocks[scan].throughBound > upper)) {
-                prefetchBounds(g, blocks[scan]);
+                prefetchBounds(g, bounds, blocks[scan]);
                 ++asked;
             }
         HubBlockRef& r = blocks[i];
@@ -984,7 +1013,7 @@ uint16_t hubToHub(const vg_graph& g, const PathBounds& bounds, HubBlockRef* bloc
     for (;;) {
         for (; found < done + kRing && scan < count; ++scan) {
             if (scan == likeliest || !(everyBlock || blocks[scan].throughBound < bestDistance())) continue;
-            prefetchBounds(g, blocks[scan]);
+            prefetchBounds(g, bounds, blocks[scan]);
             ring[found++ % kRing] = scan;
         }
         for (; asked < found && asked <= done + kRowLookahead; ++asked) {
@@ -1102,7 +1131,7 @@ float hubBlockBound(const vg_graph& g, vg_workspace& ws, uint32_t x, uint32_t bl
     if (side.hub == kNone) innerSteps(g, ws, x, side, ws.hubSlotSteps);
     EndpointBounds b;
     endpointBounds(g, ws, x, side, ws.hubSlotSteps, b);
-    const float* bounds = g.hubBlockBounds + uint64_t(block) * (4 + 2 * g.landmarkCount);
+    const BlockBounds bounds = blockBounds(g, ws, block);
 #if VG_HUB_AVX2
     if (g.avx2) {
         LandmarkLanes lanes;
@@ -1176,7 +1205,7 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
     uint32_t meetCount = 0;
     const uint32_t meetNode = bounded ? commonAncestor(g, treeOfHub(g, hubS), treeOfHub(g, hubT)) : kNone;
     PathBounds pathBounds;
-    if (bounded) preparePathBounds(g, boundsS, boundsT, pathBounds);
+    if (bounded) preparePathBounds(g, ws, boundsS, boundsT, pathBounds);
     uint32_t blockCount = pathBlocks(g, ws, lca, pathBounds, bounded, meetNode, &meetCount);
     if (bounded)
         upper = kUpperSlack * distanceOf(hubToHub(g, pathBounds, ws.hubBlocks, meetCount, hubS, hubT,

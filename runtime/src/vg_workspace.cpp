@@ -12,7 +12,7 @@
 
 namespace {
 
-constexpr size_t kAlign = 16;
+constexpr size_t kAlign = 64;  // a cache line: a block's landmark ranges are one (blockRangeStride)
 using vg::kMaxPatchSlots;
 using vg::Layout;
 
@@ -116,6 +116,7 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.hubSlotCost = L.take<float>(2 * uint64_t(g.hubTreeCount ? largestFirstPatch(g) + vg::kRecordLanes : 0));
     o.hubBlockBegin = L.take<uint32_t>(uint64_t(g.hubTreeCount) + 1);
     o.hubBlockSpheres = L.take<float>(g.hubBlockBounds ? 4 * hubBlockCount(g) : 0);
+    o.hubBlockRanges = L.take<uint16_t>(g.hubBlockBounds ? vg::blockRangeStride(g.landmarkCount) * hubBlockCount(g) : 0);
     o.hubSlotRecordBegin = L.take<uint32_t>(g.hubTreeCount ? uint64_t(g.firstCount) + 1 : 0);
     // Each patch's candidates start a group of kRecordLanes (padded with kNone slots).
     const uint64_t candidates = g.hubTreeCount ? firstSlotCount(g) + uint64_t(g.firstCount) * vg::kRecordLanes : 0;
@@ -171,6 +172,36 @@ void fillHubBlockSpheres(const vg_graph& g, float* spheres) {
     const uint64_t stride = 4 + 2 * uint64_t(g.landmarkCount), blocks = hubBlockCount(g);
     for (uint64_t b = 0; b < blocks; ++b)
         for (uint32_t k = 0; k < 4; ++k) spheres[4 * b + k] = g.hubBlockBounds[b * stride + k];
+}
+
+// Each block's landmark ranges in landmark steps (vg_workspace.h): the low end rounded down
+// and the high end up, so that the steps times the scale, as the query computes it, never
+// narrow the blob's range; a range without ends (or NaN) keeps no bound (0, kNoRangeEnd).
+void fillHubBlockRanges(const vg_graph& g, uint16_t* ranges) {
+    if (g.hubBlockBounds == nullptr) return;
+    const uint32_t L = g.landmarkCount, stride = vg::blockRangeStride(L);
+    const uint64_t record = 4 + 2 * uint64_t(L), blocks = hubBlockCount(g);
+    for (uint64_t b = 0; b < blocks; ++b) {
+        uint16_t* out = ranges + b * stride;
+        for (uint32_t k = 0; k < stride; ++k) out[k] = 0;
+        for (uint32_t k = 0; k < L; ++k) {
+            const float lo = g.hubBlockBounds[b * record + 4 + 2 * k], hi = g.hubBlockBounds[b * record + 5 + 2 * k];
+            const float scale = g.landmarkScale[k];
+            uint32_t loSteps = 0, hiSteps = vg::kNoRangeEnd;
+            if (scale > 0.0f && lo > 0.0f) {  // also false for NaN
+                const double x = double(lo) / double(scale);
+                loSteps = x < 65534.0 ? uint32_t(x) : 65534u;
+                while (loSteps > 0 && float(loSteps) * scale > lo) --loSteps;
+            }
+            if (scale > 0.0f && hi >= 0.0f && hi < 65534.0f * scale) {
+                hiSteps = uint32_t(double(hi) / double(scale)) + 1;
+                while (hiSteps > 0 && float(hiSteps - 1) * scale >= hi) --hiSteps;
+                while (hiSteps < vg::kNoRangeEnd && float(hiSteps) * scale < hi) ++hiSteps;
+            }
+            out[k] = uint16_t(loSteps);
+            out[L + k] = uint16_t(hiSteps);
+        }
+    }
 }
 
 // The hub blocks come per tree node in tree order; a query finds a node's first by this.
@@ -308,6 +339,7 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
     fillNodeRecords(*graph, ws->nodeRecords);
     fillHubBlockBegin(*graph, ws->hubBlockBegin);
     fillHubBlockSpheres(*graph, ws->hubBlockSpheres);
+    fillHubBlockRanges(*graph, ws->hubBlockRanges);
     for (uint32_t t = 0; t < graph->hubTreeCount; ++t) {
         ws->hubSubtreeEnd[t] = vg::hubSubtreeEnd(graph->hubTree, graph->hubTreeCount, graph->hubCount, t);
         const uint32_t parent = graph->hubTree[t].parent;  // preorder: filled before t

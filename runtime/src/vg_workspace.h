@@ -249,6 +249,9 @@ struct vg_workspace {
     uint32_t* hubBlockBegin;       // ... per tree node its first block (T + 1, filled at init),
     float* hubBlockSpheres;        // ... per block its bounding sphere (centre, radius; filled at
                                    //     init from the block bounds, which hold them 112 bytes apart),
+    uint16_t* hubBlockRanges;      // ... per block its landmark ranges in landmark steps, widened
+                                   //     outward (blockRangeStride entries a block: every low end,
+                                   //     then every high end; 65535 high: none; filled at init),
     uint32_t* hubSlotRecordBegin;  // ... per first-layer patch (+ 1) its first exit candidate,
     uint32_t* hubSlotOrder;        // ... per patch its slots that are hubs, in hub order (kNone pads),
     uint32_t* hubSlotHub;          // ... their hub numbers (kNone pads),
@@ -289,6 +292,16 @@ inline float& slotPosition(float* positions, uint64_t candidate, uint64_t axis) 
 inline uint16_t& slotLandmark(uint16_t* landmarks, uint64_t landmarkCount, uint64_t candidate, uint64_t k) {
     return landmarks[(candidate / kRecordLanes) * kRecordLanes * landmarkCount + k * kRecordLanes + candidate % kRecordLanes];
 }
+
+// A block's landmark ranges as a query reads them: one cache line (64-byte aligned) up to 16
+// landmarks, where the blob's float record (sphere and ranges) spans two or three; the
+// vector kernel reads eight low and eight high ends at a time, so a partial last group
+// stays inside the block's entries.
+inline uint32_t blockRangeStride(uint32_t landmarkCount) {
+    const uint32_t need = 2 * landmarkCount + (landmarkCount % 8 ? 8 - landmarkCount % 8 : 0);
+    return (need + 31) & ~31u;
+}
+constexpr uint16_t kNoRangeEnd = 65535;  // a high end of no range (+inf)
 
 // Legs a path may have (its node chain plus the endpoints and a crossing, twice over for
 // first-layer legs expanded into the second layer).

@@ -849,7 +849,7 @@ uint32_t blocksWithin(const vg_graph& g, const PathBounds& bounds, HubBlockRef* 
                       float upper) {
     if (upper == __builtin_inff()) return count;
     uint32_t kept = 0;
-    // The bounds records of the next 2 kRowLookahead blocks whose spheres pass (as in
+    // The landmark ranges of the next 2 kRowLookahead blocks whose spheres pass (as in
     // hubToHub): one miss each otherwise. `asked`: those asked for and not yet reached.
     uint32_t scan = 0, asked = 0;
     for (uint32_t i = 0; i < count; ++i) {
@@ -999,7 +999,7 @@ uint16_t hubToHub(const vg_graph& g, const PathBounds& bounds, HubBlockRef* bloc
         if (blocks[i].throughBound < blocks[likeliest].throughBound) likeliest = i;
     if (count > 0) meet(likeliest);
     // Only the blocks whose sphere passes can be met (the best only drops), a fraction of the
-    // path on the larger graphs (~110 of ~390 on igea x16). Their bounds records are asked
+    // path on the larger graphs (~110 of ~390 on igea x16). Their landmark ranges are asked
     // for 2 kRowLookahead of them ahead, and a block's two rows once those bounds let it
     // pass, kRowLookahead ahead: each is a miss of its own (mostly from memory there), and
     // one after the other they were most of this loop's time. A block is met or skipped on

@@ -65,7 +65,7 @@ struct HubBlockRef {
     float targetRoom;
     // Lower bounds of the paths through the block's hubs: from s to t, and from the hubs to
     // t (0 without block bounds); from the block's sphere alone until `landmarks` is kNone,
-    // else its bounds record to tighten them with its landmark ranges.
+    // else its block number, to tighten them with its landmark ranges (hubBlockRanges).
     float throughBound, toTargetBound;
     uint32_t landmarks;
 };
@@ -281,7 +281,7 @@ constexpr uint32_t kRecordLanes = 8;
 // endpoint on more patches' borders reads every exit's rows instead).
 constexpr uint32_t kMaxSidePatches = 8;
 // The label kernels find a block's rows and ask for them this many blocks before they add
-// them (and bounds records twice as far ahead): a block's rows are a few dozen misses, its
+// them (and exit lists and landmark ranges twice as far ahead): a block's rows are a few dozen misses, its
 // sums far shorter than one. One block ahead was ~6% slower at p50 on igea; 3 and 6
 // measured the same (BENCHMARKS.md, session 40).
 constexpr uint32_t kRowLookahead = 3;

@@ -27,12 +27,9 @@ FixedWorkTiming fixedWorkTiming(double micros, int runs) {
             sink = sink + chain(steps);
             t.push_back(w.seconds() * 1e6);
         }
-        const double median = percentile(t, 50);
-        if (median > 0.5 * micros && median < 2.0 * micros) {
-            steps = std::max(1L, long(double(steps) * micros / median));
-            break;
-        }
-        steps = median > 0 ? std::max(1L, long(double(steps) * std::min(micros / median, 16.0))) : steps * 16;
+        const double median = percentile(t, 50), ratio = median > 0 ? micros / median : 16.0;
+        steps = std::max(1L, long(double(steps) * std::min(ratio, 16.0)));
+        if (ratio > 0.5 && ratio < 2.0) break;  // close: the last scaling is the fine one
     }
     std::vector<double> us;
     for (int i = 0; i < runs; ++i) {

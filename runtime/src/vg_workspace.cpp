@@ -165,27 +165,23 @@ void fillNodeRecords(const vg_graph& g, float* records) {
     }
 }
 
-// Each block's sphere (its first four bound fields) side by side, so that a query's first
-// bounds of a tree path's blocks are a few cache lines.
-void fillHubBlockSpheres(const vg_graph& g, float* spheres) {
-    if (g.hubBlockBounds == nullptr) return;
-    const uint64_t stride = 4 + 2 * uint64_t(g.landmarkCount), blocks = hubBlockCount(g);
-    for (uint64_t b = 0; b < blocks; ++b)
-        for (uint32_t k = 0; k < 4; ++k) spheres[4 * b + k] = g.hubBlockBounds[b * stride + k];
-}
-
-// Each block's landmark ranges in landmark steps (vg_workspace.h): the low end rounded down
-// and the high end up, so that the steps times the scale, as the query computes it, never
-// narrow the blob's range; a range without ends (or NaN) keeps no bound (0, kNoRangeEnd).
-void fillHubBlockRanges(const vg_graph& g, uint16_t* ranges) {
+// Each block's bounds as a query reads them. Its sphere (the record's first four fields)
+// side by side with the other blocks', so that the first bounds of a tree path's blocks are
+// a few cache lines. Its landmark ranges in landmark steps (vg_workspace.h): the low end
+// rounded down and the high end up, so that the steps times the scale, as the query
+// computes it, never narrow the blob's range; a range without ends (or NaN) keeps no
+// bound (0, kNoRangeEnd).
+void fillHubBlockBounds(const vg_graph& g, float* spheres, uint16_t* ranges) {
     if (g.hubBlockBounds == nullptr) return;
     const uint32_t L = g.landmarkCount, stride = vg::blockRangeStride(L);
     const uint64_t record = 4 + 2 * uint64_t(L), blocks = hubBlockCount(g);
     for (uint64_t b = 0; b < blocks; ++b) {
+        const float* in = g.hubBlockBounds + b * record;
+        for (uint32_t k = 0; k < 4; ++k) spheres[4 * b + k] = in[k];
         uint16_t* out = ranges + b * stride;
         for (uint32_t k = 0; k < stride; ++k) out[k] = 0;
         for (uint32_t k = 0; k < L; ++k) {
-            const float lo = g.hubBlockBounds[b * record + 4 + 2 * k], hi = g.hubBlockBounds[b * record + 5 + 2 * k];
+            const float lo = in[4 + 2 * k], hi = in[5 + 2 * k];
             const float scale = g.landmarkScale[k];
             uint32_t loSteps = 0, hiSteps = vg::kNoRangeEnd;
             if (scale > 0.0f && lo > 0.0f) {  // also false for NaN
@@ -338,8 +334,7 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
     clearStamps(*ws);
     fillNodeRecords(*graph, ws->nodeRecords);
     fillHubBlockBegin(*graph, ws->hubBlockBegin);
-    fillHubBlockSpheres(*graph, ws->hubBlockSpheres);
-    fillHubBlockRanges(*graph, ws->hubBlockRanges);
+    fillHubBlockBounds(*graph, ws->hubBlockSpheres, ws->hubBlockRanges);
     for (uint32_t t = 0; t < graph->hubTreeCount; ++t) {
         ws->hubSubtreeEnd[t] = vg::hubSubtreeEnd(graph->hubTree, graph->hubTreeCount, graph->hubCount, t);
         const uint32_t parent = graph->hubTree[t].parent;  // preorder: filled before t

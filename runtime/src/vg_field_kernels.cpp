@@ -109,70 +109,35 @@ VG_AVX2 inline __m256 crossingLanes(__m256 a, __m256 b, __m256 l, __m256 ll, __m
     return _mm256_blendv_ps(_mm256_set1_ps(__builtin_inff()), length, _mm256_and_ps(unfolds, meets));
 }
 
-// Pair t of a node's K <= 8 edges and its members is edge t % K of member t / K; a vector
-// takes eight pairs at a time, starting at edge k0 of member m0: lane i holds pair
-// k0 + i after it, i.e. member m0 + (k0 + i) / K and edge (k0 + i) % K, read from these
-// tables (row K, column k0 + i).
-struct PairTables {
-    int32_t member[9][16], edge[9][16];
-    constexpr PairTables() : member(), edge() {
-        for (int K = 1; K <= 8; ++K)
-            for (int t = 0; t < 16; ++t) {
-                member[K][t] = t / K;
-                edge[K][t] = t % K;
-            }
-    }
-};
-constexpr PairTables kPairs;
-
-// A node's edges side by side with its members: every lane one (edge, member) pair, so the
-// square roots and divisions run on full vectors; each lane's result lowers its member's
-// best afterwards. Nodes with more than eight edges take them eight at a time per member.
+// Eight of a node's members side by side (lanes past the last one masked off), each
+// lane going through all of the node's edges: an edge's values are broadcast and only w's
+// row entry is gathered per edge, and a member's best is written once, after its lowest
+// crossing (igea's field: the crossings ~1.6x faster than with (edge, member) pairs in the
+// lanes, which gathered three values and wrote best once per pair).
 VG_AVX2 void lowerByCrossingsAvx2(const float* rows, float a, const float* c, const CrossingEdge* edges,
                                   uint32_t edgeCount, const uint32_t* members, uint32_t memberCount, float* best) {
-    const __m256 va = _mm256_set1_ps(a);
-    for (uint32_t k0 = 0; k0 < edgeCount; k0 += 8) {
-        const uint32_t K = edgeCount - k0 < 8 ? edgeCount - k0 : 8;
-        alignas(32) float b[8] = {}, l[8] = {}, ll[8] = {}, half[8] = {}, sx[8] = {}, sy[8] = {};
-        alignas(32) int32_t row[8] = {};
-        for (uint32_t k = 0; k < K; ++k) {
-            const CrossingEdge& E = edges[k0 + k];
-            b[k] = E.b;
-            l[k] = E.length;
-            ll[k] = E.lengthSquared;
-            half[k] = E.halfInverse;
-            sx[k] = E.source.x;
-            sy[k] = E.source.y;
-            row[k] = int32_t(E.row);
+    const __m256 va = _mm256_set1_ps(a), inf = _mm256_set1_ps(__builtin_inff());
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    for (uint32_t m0 = 0; m0 < memberCount; m0 += 8) {
+        const __m256i live = _mm256_cmpgt_epi32(_mm256_set1_epi32(int32_t(memberCount - m0)), lane);
+        const __m256 liveMask = _mm256_castsi256_ps(live);
+        const __m256i j = _mm256_maskload_epi32(reinterpret_cast<const int*>(members + m0), live);
+        const __m256 vc = _mm256_mask_i32gather_ps(_mm256_setzero_ps(), c, j, liveMask, 4);
+        __m256 lowest = inf;
+        for (uint32_t k = 0; k < edgeCount; ++k) {
+            const CrossingEdge& E = edges[k];
+            const __m256 ve = _mm256_mask_i32gather_ps(inf, rows + E.row, j, liveMask, 4);
+            const __m256 length = crossingLanes(va, _mm256_set1_ps(E.b), _mm256_set1_ps(E.length),
+                                                _mm256_set1_ps(E.lengthSquared), _mm256_set1_ps(E.halfInverse),
+                                                _mm256_set1_ps(E.source.x), _mm256_set1_ps(E.source.y), vc, ve);
+            lowest = _mm256_min_ps(lowest, length);
         }
-        const __m256 eb = _mm256_load_ps(b), el = _mm256_load_ps(l), ell = _mm256_load_ps(ll);
-        const __m256 ehalf = _mm256_load_ps(half), esx = _mm256_load_ps(sx), esy = _mm256_load_ps(sy);
-        const __m256i erow = _mm256_load_si256(reinterpret_cast<const __m256i*>(row));
-        const uint32_t pairs = K * memberCount;
-        uint32_t m0 = 0, e0 = 0;  // member and edge of the vector's first pair
-        for (uint32_t t = 0; t < pairs; t += 8) {
-            const __m256i ke = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(kPairs.edge[K] + e0));
-            const __m256i km = _mm256_add_epi32(_mm256_set1_epi32(int32_t(m0)),
-                                                _mm256_loadu_si256(reinterpret_cast<const __m256i*>(kPairs.member[K] + e0)));
-            const __m256i live = _mm256_cmpgt_epi32(_mm256_set1_epi32(int32_t(pairs - t)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-            const __m256i j = _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), reinterpret_cast<const int*>(members), km, live, 4);
-            const __m256 vc = _mm256_mask_i32gather_ps(_mm256_setzero_ps(), c, j, _mm256_castsi256_ps(live), 4);
-            const __m256i at = _mm256_add_epi32(_mm256_permutevar8x32_epi32(erow, ke), j);
-            const __m256 ve = _mm256_mask_i32gather_ps(_mm256_set1_ps(__builtin_inff()), rows, at, _mm256_castsi256_ps(live), 4);
-            const __m256 length =
-                crossingLanes(va, _mm256_permutevar8x32_ps(eb, ke), _mm256_permutevar8x32_ps(el, ke),
-                              _mm256_permutevar8x32_ps(ell, ke), _mm256_permutevar8x32_ps(ehalf, ke),
-                              _mm256_permutevar8x32_ps(esx, ke), _mm256_permutevar8x32_ps(esy, ke), vc, ve);
-            alignas(32) float len[8];
-            alignas(32) uint32_t slot[8];
-            _mm256_store_ps(len, length);
-            _mm256_store_si256(reinterpret_cast<__m256i*>(slot), j);
-            const uint32_t n = pairs - t < 8 ? pairs - t : 8;
-            for (uint32_t i = 0; i < n; ++i) best[slot[i]] = len[i] < best[slot[i]] ? len[i] : best[slot[i]];
-            e0 += 8;  // the next vector starts 8 pairs on
-            m0 += e0 / K;
-            e0 %= K;
-        }
+        alignas(32) float len[8];
+        alignas(32) uint32_t slot[8];
+        _mm256_store_ps(len, lowest);
+        _mm256_store_si256(reinterpret_cast<__m256i*>(slot), j);
+        const uint32_t n = memberCount - m0 < 8 ? memberCount - m0 : 8;
+        for (uint32_t i = 0; i < n; ++i) best[slot[i]] = len[i] < best[slot[i]] ? len[i] : best[slot[i]];
     }
 }
 

@@ -89,6 +89,8 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.slotLabel = L.take<float>(kMaxPatchSlots);
     o.slotOrigin = L.take<uint32_t>(kMaxPatchSlots);
     o.patchEdges = L.take<vg::CrossingEdge>(vg::kMaxPatchEdges);
+    o.patchFromOrigin = L.take<uint32_t>(kMaxPatchSlots);
+    o.patchPassingEdges = L.take<uint32_t>(vg::kMaxPatchEdges);
     o.patchMemberBegin = L.take<uint32_t>(kMaxPatchSlots + 1);
     o.patchMembers = L.take<uint32_t>(kMaxPatchSlots);
     o.slotEntries = L.take<uint32_t>(kMaxPatchSlots);

@@ -2,7 +2,8 @@
 // version that unpacks four entries per 6-byte word, and an AVX2 version that unpacks
 // sixteen entries from 24 bytes with one byte shuffle and works on eight at a time; each
 // entry point takes all the rows of a patch, so the per-call cost is paid once per patch.
-// The crossing kernel: in AVX2, (edge, vertex) pairs side by side.
+// The crossing kernel: in AVX2, eight vertices side by side, each through all the edges of
+// their best node.
 #include "vg_field_kernels.h"
 
 #if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
@@ -87,10 +88,9 @@ inline float crossingAt(const CrossingEdge& E, float a, float c, float e) {
 
 #if VG_FIELD_KERNELS_AVX2
 
-
 // crossingAt for eight (edge, member) pairs in the lanes, operation for operation (with
-// unfoldPoint's l * l and 0.5 / l taken from the edge): the edges' values come in lanes
-// already (b, l, ll, half, sx, sy), e and c per lane.
+// unfoldPoint's l * l and 0.5 / l taken from the edge): the edges' values (b, l, ll, half,
+// sx, sy), e and c per lane.
 VG_AVX2 inline __m256 crossingLanes(__m256 a, __m256 b, __m256 l, __m256 ll, __m256 half, __m256 sx, __m256 sy,
                                     __m256 c, __m256 e) {
     const __m256 zero = _mm256_setzero_ps();

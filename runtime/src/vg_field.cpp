@@ -53,7 +53,7 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws,
     uint32_t decoded = reached;  // rows in patchEntries: the reached nodes', then those decoded here
     uint32_t groupSlot = kNone, count = 0;  // the node whose crossing edges are being collected
     auto lowerGroup = [&] {
-        if (groupSlot == kNone) return;
+        if (groupSlot == kNone || count == 0) return;  // (no edge unfolded: nothing to lower)
         const uint32_t r = ws.slotEntries[groupSlot];
         lowerByCrossings(g.avx2, ws.patchEntries, ws.patchNodeDistance[r], ws.patchEntries + uint64_t(r) * stride, edges,
                          count, members + memberBegin[r], memberBegin[r + 1] - memberBegin[r], ws.patchBest);

@@ -112,8 +112,8 @@ VG_AVX2 inline __m256 crossingLanes(__m256 a, __m256 b, __m256 l, __m256 ll, __m
 // Eight of a node's members side by side (lanes past the last one masked off), each
 // lane going through all of the node's edges: an edge's values are broadcast and only w's
 // row entry is gathered per edge, and a member's best is written once, after its lowest
-// crossing (igea's field: the crossings ~1.6x faster than with (edge, member) pairs in the
-// lanes, which gathered three values and wrote best once per pair).
+// crossing. (With (edge, member) pairs in the lanes, three gathers and a write per pair,
+// the kernel took 1.3-1.8 ms of an igea field against 0.7-1.0: BENCHMARKS.md.)
 VG_AVX2 void lowerByCrossingsAvx2(const float* rows, float a, const float* c, const CrossingEdge* edges,
                                   uint32_t edgeCount, const uint32_t* members, uint32_t memberCount, float* best) {
     const __m256 va = _mm256_set1_ps(a), inf = _mm256_set1_ps(__builtin_inff());

@@ -51,12 +51,13 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws,
     CrossingEdge* edges = ws.patchEdges;
     uint32_t* passing = ws.patchPassingEdges;
     uint32_t decoded = reached;  // rows in patchEntries: the reached nodes', then those decoded here
-    uint32_t groupSlot = kNone, count = 0;  // the node whose crossing edges are being collected
+    // The node whose crossing edges are being collected: its slot, reached index and distance.
+    uint32_t groupSlot = kNone, r = 0, count = 0;
+    float a = 0.0f;
     auto lowerGroup = [&] {
         if (groupSlot == kNone || count == 0) return;  // (no edge unfolded: nothing to lower)
-        const uint32_t r = ws.slotEntries[groupSlot];
-        lowerByCrossings(g.avx2, ws.patchEntries, ws.patchNodeDistance[r], ws.patchEntries + uint64_t(r) * stride, edges,
-                         count, members + memberBegin[r], memberBegin[r + 1] - memberBegin[r], ws.patchBest);
+        lowerByCrossings(g.avx2, ws.patchEntries, a, ws.patchEntries + uint64_t(r) * stride, edges, count,
+                         members + memberBegin[r], memberBegin[r + 1] - memberBegin[r], ws.patchBest);
     };
     const uint32_t end = patchEdgesEnd(g, patchIndex);
     for (uint32_t chunk = p.edgeBegin; chunk < end; chunk += kMaxPatchEdges) {
@@ -72,10 +73,11 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws,
             if (E.from != groupSlot) {  // the edges come grouped by their first slot
                 lowerGroup();
                 groupSlot = E.from;
+                r = ws.slotEntries[groupSlot];
+                a = ws.patchNodeDistance[r];
                 count = 0;
             }
             if (count == kMaxPatchEdges) continue;
-            const float a = ws.patchNodeDistance[ws.slotEntries[E.from]];
             const float b = ws.slotLabel[E.to], l = E.length;
             UnfoldedPoint source;
             if (!unfoldPoint(a, b, l, source)) continue;

@@ -449,51 +449,6 @@ TEST_CASE("hub labels: runs inside each subtree give the whole overlay's hub-to-
     CHECK(differ == 0);
 }
 
-TEST_CASE("hub labels: an endpoint's landmark distances through its patch's first-layer nodes", "[hub]") {
-    // A label query takes an endpoint's landmark distances from its inner distances to its
-    // first-layer patch's nodes and their landmark distances: the searches' values (from the
-    // row nodes) up to the slack it declares, and no bound (+inf) for a landmark inside the
-    // patch, where a path need not pass those nodes.
-    for (const double delta : {0.0, 0.002}) {
-        const std::vector<uint8_t> blob = delta == 0.0 ? labelledBlob() : bakeLabelled(false, 0, delta);
-        RuntimeGraph g = openOrFail(blob);
-        const vg_graph& graph = *g.graph();
-        REQUIRE(graph.landmarkCount > 1);
-        RuntimeWorkspace ws(g.graph());
-        size_t throughSlots = 0, inside = 0, compared = 0;
-        for (uint32_t x = 0; x < vg_vertex_count(g.graph()); x += 7) {
-            float fromLabels[vg::kMaxLandmarks], fromRows[vg::kMaxLandmarks];
-            const float slack = vg::hubEndpointLandmarks(graph, *ws.get(), x, fromLabels);
-            if (slack < 0.0f) continue;
-            vg::landmarkDistances(graph, x, fromRows);
-            if (slack == 0.0f) {  // a hub, or a patch with nodes merged away: the row nodes' values
-                for (uint32_t k = 0; k < graph.landmarkCount; ++k) CHECK(fromLabels[k] == fromRows[k]);
-                continue;
-            }
-            ++throughSlots;
-            const uint32_t first = graph.second[graph.vertexPatch[x]].parent;
-            for (uint32_t k = 0; k < graph.landmarkCount; ++k) {
-                bool landmarkInside = false;
-                vg::forEachPatchOf(graph, graph.landmarkVertex[k], [&](uint32_t patch, uint32_t) {
-                    landmarkInside |= graph.second[patch].parent == first;
-                });
-                if (landmarkInside) {
-                    CHECK(fromLabels[k] == __builtin_inff());
-                    ++inside;
-                    continue;
-                }
-                REQUIRE(std::isfinite(fromRows[k]));
-                CHECK(std::fabs(fromLabels[k] - fromRows[k]) <= slack + graph.landmarkScale[k] + 1e-5f * fromRows[k]);
-                ++compared;
-            }
-        }
-        CHECK(throughSlots > 100);
-        CHECK(inside > 0);
-        CHECK(compared > 1000);
-        if (delta > 0.0) WARN(throughSlots << " endpoints through slots on the pruned graph");
-    }
-}
-
 TEST_CASE("hub labels: the portable and AVX2 block bounds are the same numbers", "[hub]") {
     // The query drops the blocks whose lower bounds leave no room under its upper bound;
     // the AVX2 kernel takes the landmarks eight at a time (12 here: a whole group and a
@@ -555,47 +510,6 @@ TEST_CASE("hub labels: a block's sphere bound is at most its whole bound", "[hub
         CHECK(tighter > 0);              // and the landmarks tighten some
         CHECK(above == 0);
     }
-}
-
-TEST_CASE("hub labels: a workspace's landmark ranges in steps hold the blob's ranges", "[hub]") {
-    // The query reads each block's landmark ranges from the workspace, in landmark steps (one
-    // cache line): every range as the query rebuilds it (steps times the scale, in float)
-    // must hold the blob's, so that a bound from it is never higher; and be at most a step
-    // wider at each end, or the bounds would lose their use.
-    const RuntimeGraph g = openOrFail(labelledBlob());
-    const vg_graph& graph = *g.graph();
-    REQUIRE(graph.hubBlockBounds != nullptr);
-    REQUIRE(graph.landmarkCount > 0);
-    RuntimeWorkspace ws(g.graph());
-    const uint32_t blocks = ws.get()->hubBlockBegin[graph.hubTreeCount], L = graph.landmarkCount;
-    const uint32_t stride = vg::blockRangeStride(L);
-    CHECK(stride * sizeof(uint16_t) % 64 == 0);
-    CHECK(reinterpret_cast<uintptr_t>(ws.get()->hubBlockRanges) % 64 == 0);  // a block: whole cache lines
-    size_t ranges = 0, bounded = 0, wide = 0, outside = 0;
-    for (uint32_t b = 0; b < blocks; ++b) {
-        const float* record = graph.hubBlockBounds + uint64_t(b) * (4 + 2 * L);
-        const uint16_t* steps = ws.get()->hubBlockRanges + uint64_t(b) * stride;
-        for (uint32_t k = 0; k < L; ++k) {
-            const float scale = graph.landmarkScale[k], lo = record[4 + 2 * k], hi = record[5 + 2 * k];
-            const float low = float(steps[k]) * scale;
-            const float high = steps[L + k] == vg::kNoRangeEnd ? INFINITY : float(steps[L + k]) * scale;
-            ++ranges;
-            outside += (std::isfinite(lo) && low > lo) || high < hi;
-            if (!std::isfinite(hi)) {
-                CHECK(steps[L + k] == vg::kNoRangeEnd);
-                continue;
-            }
-            ++bounded;
-            // A high end past the largest step (the baker widens its ranges by a millionth)
-            // can only be kept open.
-            const bool top = steps[L + k] == vg::kNoRangeEnd && hi > 65533.0f * scale;
-            wide += (lo > 0.0f && lo - low > 1.5f * scale) || (!top && high - hi > 1.5f * scale);
-        }
-    }
-    CHECK(ranges > 100);
-    CHECK(bounded > ranges / 2);
-    CHECK(outside == 0);
-    CHECK(wide == 0);
 }
 
 TEST_CASE("hub labels: the portable and AVX2 label kernels give the same answers", "[hub]") {

@@ -515,9 +515,10 @@ SideRows sideRows(const vg_graph& g, const vg_workspace& ws, uint32_t x, const S
 // Which first-layer nodes of an endpoint's patch a query reads. A node n of s's patch can
 // only carry a shortest path to t if d(s, n) + d(n, t) is at most the answer, and d(n, t)
 // is at least the straight line and the landmark bounds: the labels of the other nodes
-// are never read. The bounds describe the runtime's graph only up to its rounding and,
-// with an exact first layer, up to the second layer's own error (at most 1.5% on the
-// shared meshes), so they are shrunk by this factor first.
+// are never read. The landmark bounds hold in the labels' own metric (vg_hub_landmarks.h)
+// up to the rounding they allow for; the straight line, a bound of the geodesic, is below
+// a label distance only by the labels' rounding (steps, the patches' quanta), which this
+// factor covers.
 constexpr float kBoundShrink = 0.98f;
 // The bounds (the straight line, and landmark distances taken over node paths) and the
 // upper bound describe node paths. Next to t the answer may be an unfolded crossing of a
@@ -608,51 +609,43 @@ VG_AVX2_TARGET void landmarksThroughGroupsAvx2(const vg_graph& g, const vg_works
 }
 #endif
 
-// x's landmark distances through the first-layer nodes of its patch: x's distance to each
-// (v, in label steps) plus its landmark distance, the best. Every path to a landmark
-// outside the patch leaves it through one of them, so that is x's distance to the
-// landmark, up to rounding; a landmark inside the patch gets +inf (no bound). The nodes'
-// records are the exit bounds' (read anyway), where the row nodes' landmark records would
-// be one scattered read each. False, with nothing written, when some first-layer node of
-// the patch is no hub (no record: pruned graphs).
-bool landmarksThroughSlots(const vg_graph& g, const vg_workspace& ws, uint32_t first, const uint16_t* v,
-                           float* out) {
+// x's landmark distances through the first-layer nodes of its patch: the best of x's
+// distance to each (v, in label steps) plus its landmark distance in the labels' metric
+// (vg_hub_landmarks.h). Every label path from x leaves through one of them, and l(x) so
+// defined keeps |l(h) - l(x)| at most x's label distance to any hub h: l(h) <= l(a) +
+// d(a, h) for the node a that x's path to h leaves by, and l(a) <= l(b) + v[a] + v[b]
+// for the node b that gives l(x) (the patch's matrix entry between them is at most the
+// way through x), up to the rounding kLandmarkSlackSteps allows. The nodes' records are
+// the exit bounds' (read anyway), where the row nodes' landmark records would be one
+// scattered read each.
+void landmarksThroughSlots(const vg_graph& g, const vg_workspace& ws, uint32_t first, const uint16_t* v, float* out) {
     const uint32_t begin = ws.hubSlotRecordBegin[first], end = ws.hubSlotRecordBegin[first + 1];
-    // The candidates are the slots that are hubs, then less than a group of padding.
-    uint32_t hubs = end - begin;
-    for (uint32_t c = end - begin > kRecordLanes ? end - kRecordLanes : begin; c < end; ++c)
-        hubs -= ws.hubSlotOrder[c] == kNone;
-    if (hubs != g.first[first].slotCount) return false;
 #if VG_HUB_AVX2
     if (g.avx2) landmarksThroughGroupsAvx2(g, ws, begin, end, v, out);
     else
 #endif
         landmarksThroughGroups(g, ws, begin, end, v, out);
-    const uint64_t inside = ws.hubFirstLandmarks[first];
-    for (uint32_t k = 0; k < g.landmarkCount; ++k)
-        if ((inside >> k) & 1u) out[k] = __builtin_inff();
-    return true;
 }
 
-// How far landmark distances through the first-layer nodes may be off, in label steps. The
-// inner rows and the landmark table are rounded apart (label steps, landmark steps) and
-// computed apart (the baker's Dijkstra inside the patch, the runtime's field from each
-// landmark): measured at most 2.7 label steps from the row nodes' values (the test torus;
-// igea 2.2), so four are allowed.
+// How far an endpoint's landmark distances may be off beyond the landmark steps' rounding,
+// in label steps: the labels and inner rows are rounded to steps (half a step each, two
+// on a side's way to a hub), the first-layer entries to their patches' quanta (about a
+// label step on the shared meshes) and the label metric's distances summed in floats.
 constexpr float kLandmarkSlackSteps = 4.0f;
 
-// An endpoint's position and landmark distances: through its patch's first-layer nodes
-// when the side is no hub (v: its distances to them), else from its row nodes as the
-// searches do.
+// An endpoint's position and landmark distances in the labels' metric: a hub's own
+// (vg_hub_landmarks.h), else through its patch's first-layer nodes (v: its distances to
+// them).
 void endpointBounds(const vg_graph& g, const vg_workspace& ws, uint32_t x, const Side& side, const uint16_t* v,
                     EndpointBounds& b) {
     b.position = g.positions + 3 * uint64_t(x);
-    if (side.hub == kNone && landmarksThroughSlots(g, ws, side.first, v, b.landmarks)) {
-        b.slack = kLandmarkSlackSteps * g.hubLabelScale;
+    b.slack = kLandmarkSlackSteps * g.hubLabelScale;
+    if (side.hub == kNone) {
+        landmarksThroughSlots(g, ws, side.first, v, b.landmarks);
         return;
     }
-    b.slack = 0.0f;
-    landmarkDistances(g, x, b.landmarks);
+    const uint16_t* steps = ws.hubLandmarks + uint64_t(side.hub) * g.landmarkCount;
+    for (uint32_t k = 0; k < g.landmarkCount; ++k) b.landmarks[k] = landmarkStepsDistance(g, k, steps[k]);
 }
 
 // A block's bounds as the query reads them: its sphere (centre, radius) and its landmark
@@ -675,11 +668,12 @@ inline float rangeHigh(const vg_graph& g, const uint16_t* ranges, uint32_t k) {
     return q == kNoRangeEnd ? __builtin_inff() : float(q) * g.landmarkScale[k];
 }
 
-// A lower bound of d(x, h) for the hubs h of a block (its sphere and landmark ranges).
+// A lower bound of d(x, h) for the hubs h of a block (its sphere, shrunk, and landmark
+// ranges).
 float blockBoundTo(const vg_graph& g, const BlockBounds& block, const EndpointBounds& x) {
     const float* c = block.sphere;
     const float dx = c[0] - x.position[0], dy = c[1] - x.position[1], dz = c[2] - x.position[2];
-    float best = __builtin_sqrtf(dx * dx + dy * dy + dz * dz) - c[3];
+    float best = (__builtin_sqrtf(dx * dx + dy * dy + dz * dz) - c[3]) * kBoundShrink;
     for (uint32_t k = 0; k < g.landmarkCount; ++k) {
         const float lo = rangeLow(g, block.ranges, k), hi = rangeHigh(g, block.ranges, k), d = x.landmarks[k];
         if (d == __builtin_inff()) continue;
@@ -715,7 +709,7 @@ VG_AVX2_TARGET float blockBoundToAvx2(const vg_graph& g, const BlockBounds& bloc
                                       const LandmarkLanes& lanes) {
     const float* c = block.sphere;
     const float dx = c[0] - x.position[0], dy = c[1] - x.position[1], dz = c[2] - x.position[2];
-    const float sphere = __builtin_sqrtf(dx * dx + dy * dy + dz * dz) - c[3];
+    const float sphere = (__builtin_sqrtf(dx * dx + dy * dy + dz * dz) - c[3]) * kBoundShrink;
     const __m256 inf = _mm256_set1_ps(__builtin_inff()), none = _mm256_set1_ps(-__builtin_inff());
     const __m256i noEnd = _mm256_set1_epi32(kNoRangeEnd);
     __m256 best = none;
@@ -781,14 +775,14 @@ void tighten(const vg_graph& g, const PathBounds& b, HubBlockRef& r) {
     const BlockBounds block = blockBounds(g, *b.ws, r.landmarks);
 #if VG_HUB_AVX2
     if (g.avx2) {
-        r.toTargetBound = blockBoundToAvx2(g, block, *b.t, b.lanesT) * kBoundShrink;
-        r.throughBound = blockBoundToAvx2(g, block, *b.s, b.lanesS) * kBoundShrink + r.toTargetBound;
+        r.toTargetBound = blockBoundToAvx2(g, block, *b.t, b.lanesT);
+        r.throughBound = blockBoundToAvx2(g, block, *b.s, b.lanesS) + r.toTargetBound;
         r.landmarks = kNone;
         return;
     }
 #endif
-    r.toTargetBound = blockBoundTo(g, block, *b.t) * kBoundShrink;
-    r.throughBound = blockBoundTo(g, block, *b.s) * kBoundShrink + r.toTargetBound;
+    r.toTargetBound = blockBoundTo(g, block, *b.t);
+    r.throughBound = blockBoundTo(g, block, *b.s) + r.toTargetBound;
     r.landmarks = kNone;
 }
 
@@ -909,8 +903,8 @@ uint32_t exitCosts(const vg_graph& g, const vg_workspace& ws, uint32_t first, co
         for (uint32_t a = 0; a < 3; ++a) record[a] = slotPosition(ws.hubSlotPositions, c, a);
         for (uint32_t i = 0; i < g.landmarkCount; ++i)
             record[3 + i] = landmarkStepsDistance(g, i, slotLandmark(ws.hubSlotLandmarks, g.landmarkCount, c, i));
-        const float bound = withLandmarks(g, record, other.landmarks, recordDistance(record, other.position), other.slack);
-        out = float(v[k]) * g.hubLabelScale + bound * kBoundShrink;
+        const float straight = recordDistance(record, other.position) * kBoundShrink;
+        out = float(v[k]) * g.hubLabelScale + withLandmarks(g, record, other.landmarks, straight, other.slack);
     }
     return likeliestExit(ws, begin, end, cost);
 }
@@ -953,8 +947,9 @@ VG_AVX2_TARGET uint32_t exitCostsAvx2(const vg_graph& g, const vg_workspace& ws,
         const __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(group), px);
         const __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(group + kRecordLanes), py);
         const __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(group + 2 * kRecordLanes), pz);
-        __m256 best = _mm256_sqrt_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
-                                                   _mm256_mul_ps(dz, dz)));
+        __m256 best = _mm256_mul_ps(_mm256_sqrt_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
+                                                                 _mm256_mul_ps(dz, dz))),
+                                    shrink);
         for (uint32_t k = 0; k < g.landmarkCount; ++k) {
             const __m256 rk = landmarkStepsDistances(landmarks + k * kRecordLanes, g.landmarkScale[k]);
             const __m256 d = _mm256_sub_ps(_mm256_and_ps(_mm256_sub_ps(rk, _mm256_set1_ps(other.landmarks[k])), absMask),
@@ -963,7 +958,7 @@ VG_AVX2_TARGET uint32_t exitCostsAvx2(const vg_graph& g, const vg_workspace& ws,
             best = _mm256_blendv_ps(best, d, take);
         }
         const __m256 s = _mm256_load_ps(steps);
-        const __m256 out = _mm256_add_ps(_mm256_mul_ps(s, scale), _mm256_mul_ps(best, shrink));
+        const __m256 out = _mm256_add_ps(_mm256_mul_ps(s, scale), best);
         _mm256_storeu_ps(cost + (c - begin), _mm256_blendv_ps(out, inf, _mm256_cmp_ps(s, inf, _CMP_EQ_OQ)));
     }
     return likeliestExitAvx2(ws, begin, end, cost);
@@ -984,8 +979,7 @@ uint32_t exitCostsOn(const vg_graph& g, const vg_workspace& ws, uint32_t first, 
 // could still beat the best sum so far (its lower bounds below it, the sphere's first;
 // every block when `everyBlock`), the likeliest block by its sphere first: on igea x16 a
 // few tens of ~390 blocks. A sum through a skipped block is at least its lower bound, so the bound
-// is the same as from every block, under the assumption the block pruning makes anyway
-// (kBoundShrink).
+// is the same as from every block, up to the rounding the block pruning allows for anyway.
 uint16_t hubToHub(const vg_graph& g, const PathBounds& bounds, HubBlockRef* blocks, uint32_t count, uint32_t a,
                   uint32_t b, uint16_t base, bool everyBlock) {
     uint16_t best = kNoStep;
@@ -1127,7 +1121,8 @@ float hubBlockBound(const vg_graph& g, vg_workspace& ws, uint32_t x, uint32_t bl
     Side side;
     if (g.hubTreeCount == 0 || g.hubBlockBounds == nullptr || g.vertexPatch[x] == kNone || !sideOf(g, x, side))
         return -1.0f;
-    if (sphereOnly) return sphereBoundTo(ws.hubBlockSpheres + 4 * uint64_t(block), g.positions + 3 * uint64_t(x));
+    if (sphereOnly)
+        return sphereBoundTo(ws.hubBlockSpheres + 4 * uint64_t(block), g.positions + 3 * uint64_t(x)) * kBoundShrink;
     if (side.hub == kNone) innerSteps(g, ws, x, side, ws.hubSlotSteps);
     EndpointBounds b;
     endpointBounds(g, ws, x, side, ws.hubSlotSteps, b);

@@ -27,17 +27,16 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
                  bool prune = true, bool generalMeeting = false, bool meetEveryBlock = false,
                  float* upperBound = nullptr);
 
-// Vertex x's landmark distances as a label query takes them (through its first-layer
-// patch's nodes, +inf for a landmark inside that patch; from its row nodes when x is a hub
-// or its patch has nodes without labels) into out[landmarkCount], and how far each may be
-// off beyond the landmark tables' rounding; -1 when the labels do not answer for x. For
-// the tests.
+// Vertex x's landmark distances as a label query takes them, in the labels' metric (a
+// hub's own, else through its first-layer patch's nodes), into out[landmarkCount], and
+// how far each may be off beyond the landmark steps' rounding; -1 when the labels do not
+// answer for x. For the tests.
 float hubEndpointLandmarks(const vg_graph& g, vg_workspace& ws, uint32_t x, float* out);
 
 // The lower bound a label query takes from vertex x to the hubs of bounded block `block`
 // (0 <= block < the workspace's block count), with the kernels g selects (AVX2 or
 // portable), or with `sphereOnly` the one it tries first, from the block's sphere alone
-// (the workspace's copy); -1 when the labels do not answer for x or the blob has no block
+// (the workspace's copy, shrunk as the query does); -1 when the labels do not answer for x or the blob has no block
 // bounds. For the tests.
 float hubBlockBound(const vg_graph& g, vg_workspace& ws, uint32_t x, uint32_t block, bool sphereOnly = false);
 

@@ -239,7 +239,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
                             bytesOf(faceTwin) + bytesOf(partition.faceSecond) + bytesOf(vertexHalfedge) +
                             bytesOf(hubs.tree) + bytesOf(hubs.firstLeaf) + bytesOf(hubs.nodeHub) +
                             bytesOf(hubs.columnBegin) + bytesOf(hubs.innerBegin) + bytesOf(hubs.innerNode) +
-                            bytesOf(hubs.innerMatrixBegin) + bytesOf(hubs.blockBounds) +
+                            bytesOf(hubs.innerMatrixBegin) + bytesOf(hubs.blockBounds) + bytesOf(hubs.landmarks) +
                             bytesOf(hubs.exitPatchBegin) + bytesOf(hubs.exitListBegin) + bytesOf(hubs.exitLists) + 4096,
                         V);
     flatbuffers::FlatBufferBuilder b(size_t(64) << 20);
@@ -273,7 +273,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
     flatbuffers::Offset<flatbuffers::Vector<const fb::HubTreeNode*>> htV;
     flatbuffers::Offset<flatbuffers::Vector<uint32_t>> hlfV, nhV, hibV, hinV, hepV, helV;
     flatbuffers::Offset<flatbuffers::Vector<uint64_t>> hlbV, himV;
-    flatbuffers::Offset<flatbuffers::Vector<uint16_t>> hexV;
+    flatbuffers::Offset<flatbuffers::Vector<uint16_t>> hexV, hlmV;
     flatbuffers::Offset<flatbuffers::Vector<float>> hbbV;
     if (withHubs) {
         htV = b.CreateVectorOfStructs(hubTree);
@@ -284,6 +284,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
         hinV = b.CreateVector(hubs.innerNode);
         himV = b.CreateVector(hubs.innerMatrixBegin);
         hbbV = b.CreateVector(hubs.blockBounds);
+        hlmV = b.CreateVector(hubs.landmarks);
         if (!hubs.exitPatchBegin.empty()) {
             hepV = b.CreateVector(hubs.exitPatchBegin);
             helV = b.CreateVector(hubs.exitListBegin);
@@ -334,6 +335,7 @@ std::vector<uint8_t> buildGraphBuffer(const Mesh& mesh, const Partition& partiti
         g.add_hub_inner_matrix_begin(himV);
         g.add_hub_inner_count(hubs.inner.size());
         g.add_hub_block_bounds(hbbV);
+        g.add_hub_landmarks(hlmV);
         if (!hubs.exitPatchBegin.empty()) {
             g.add_hub_exit_patch_begin(hepV);
             g.add_hub_exit_list_begin(helV);

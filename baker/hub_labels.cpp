@@ -10,6 +10,7 @@
 
 #include "hub_exit_lists.h"
 #include "hub_label_runs.h"
+#include "hub_landmarks.h"
 #include "parallel.h"
 #include "quad_heap.h"
 #include "vorogeo_distance_coding.h"
@@ -124,11 +125,12 @@ void chainOrder(const View& v, std::vector<std::pair<uint32_t, uint32_t>>::itera
     std::copy(chained.begin(), chained.end(), begin);
 }
 
-// HubLabels::blockBounds. The sphere's radius and the landmark intervals are widened past
-// float rounding so that every hub of the block is inside them.
-std::vector<float> blockBounds(const View& v, const std::vector<HubTreeNode>& tree, const std::vector<uint32_t>& hubNode) {
+// HubLabels::blockBounds. The sphere's radius is widened past float rounding so that every
+// hub of the block is inside it. The landmark intervals hold the hubs' values exactly as
+// the runtime reads them (steps times the scale, in float), so they need no widening.
+std::vector<float> blockBounds(const View& v, const std::vector<HubTreeNode>& tree, const std::vector<uint32_t>& hubNode,
+                               const std::vector<uint16_t>& hubLandmarks) {
     const auto* landmarkScale = v.g->landmark_scale();
-    const auto* nodeLandmarks = v.g->node_landmarks();
     const uint32_t K = landmarkScale ? landmarkScale->size() : 0;
     std::vector<float> bounds;
     auto position = [&](uint32_t h, uint32_t c) {
@@ -150,16 +152,17 @@ std::vector<float> blockBounds(const View& v, const std::vector<HubTreeNode>& tr
             }
             bounds.insert(bounds.end(), {fc[0], fc[1], fc[2], float(radius * (1.0 + 1e-5) + 1e-30)});
             for (uint32_t k = 0; k < K; ++k) {
-                double lo = kInf, hi = -kInf;
+                float lo = std::numeric_limits<float>::infinity(), hi = -lo;
                 for (uint32_t h = first; h < end; ++h) {
-                    const uint16_t q = nodeLandmarks->Get(hubNode[h] * K + k);
-                    const double d = q == kHubUnreachable ? kInf : double(q) * double(landmarkScale->Get(k));
+                    const uint16_t q = hubLandmarks[uint64_t(h) * K + k];
+                    const float d = q == kHubUnreachable ? std::numeric_limits<float>::infinity()
+                                                         : float(q) * landmarkScale->Get(k);
                     lo = std::min(lo, d);
                     hi = std::max(hi, d);
                 }
                 const bool bounded = std::isfinite(hi);
-                bounds.push_back(bounded ? float(lo * (1.0 - 1e-6)) : -std::numeric_limits<float>::infinity());
-                bounds.push_back(bounded ? float(hi * (1.0 + 1e-6)) : std::numeric_limits<float>::infinity());
+                bounds.push_back(bounded ? lo : -std::numeric_limits<float>::infinity());
+                bounds.push_back(bounded ? hi : std::numeric_limits<float>::infinity());
             }
         }
     return bounds;
@@ -564,7 +567,6 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
     std::vector<uint32_t> subtreeEnd(T);
     for (uint32_t t = 0; t < T; ++t) subtreeEnd[t] = t + 1;
     for (uint32_t t = T; t-- > 1;) subtreeEnd[out.tree[t].parent] = std::max(subtreeEnd[out.tree[t].parent], subtreeEnd[t]);
-    out.blockBounds = blockBounds(v, out.tree, hubNode);
     auto hubEnd = [&](uint32_t t) { return subtreeEnd[t] < T ? out.tree[subtreeEnd[t]].hubBegin : H; };
     out.hubCount = H;
     out.columnBegin.assign(T + 1, 0);
@@ -622,6 +624,8 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
         for (uint64_t j = 0; j < S; ++j) slotNode[r.slot_begin() + j] = v.slot(r.slot_begin() + j);
         patchScale[p] = double(r.scale());
     });
+    out.landmarks = hubLandmarkSteps(*v.g, FirstLayerOverlay{quantaBegin, quanta, patchScale, slotNode, kNoPath}, hubNode);
+    out.blockBounds = blockBounds(v, out.tree, hubNode, out.landmarks);
 
     // Labels over the first-layer patches of each tree node's subtree (hub_labels.h: why no
     // path outside is needed; a subtree is a range of tree nodes, so a patch is inside when

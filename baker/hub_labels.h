@@ -55,10 +55,13 @@ struct HubLabels {
     std::vector<uint32_t> innerNode;     // per first-layer patch: its active second-layer nodes, sorted
     std::vector<uint64_t> innerMatrixBegin;  // first-layer patches + 1 offsets into inner
     std::vector<uint16_t> inner;         // per first-layer patch: inner node x first-layer slot
+    // Per hub its landmark distances in the labels' metric, hub-major, in landmark steps
+    // (hub_landmarks.h; vorogeo.fbs hub_landmarks).
+    std::vector<uint16_t> landmarks;
     // Per block of kHubBlock consecutive hubs of a tree node (tree order, a node's last block
     // shorter): a bounding sphere (centre x, y, z, radius), then per landmark the smallest and
-    // largest distance of its hubs (-inf, +inf where one is unreachable). The runtime reads a
-    // label only over the blocks that can lie near a shortest path.
+    // largest of its hubs' `landmarks` (-inf, +inf where one is unreachable). The runtime
+    // reads a label only over the blocks that can lie near a shortest path.
     std::vector<float> blockBounds;
     // Per second-layer patch q, the exits a query needs in each block of q's tree path
     // (hub_exit_lists.h): exitPatchBegin (second-layer patches + 1) into exitListBegin,

@@ -1,4 +1,4 @@
-/* The vorogeo blob container (format version 11), shared by the baker and the runtime.
+/* The vorogeo blob container (format version 12), shared by the baker and the runtime.
  *
  *   offset  size  field
  *        0     8  magic "VOROGEO\0"
@@ -40,7 +40,7 @@
 
 #define VG_CONTAINER_MAGIC "VOROGEO"
 #define VG_CONTAINER_HEADER_SIZE 48u
-#define VG_FORMAT_VERSION 11u
+#define VG_FORMAT_VERSION 12u
 #define VG_FLAG_ZSTD 1u
 #define VG_FLAG_CODED_DISTANCES 2u
 #define VG_FLAG_INNER_ROWS_AT_OPEN 4u

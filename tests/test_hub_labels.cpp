@@ -512,6 +512,47 @@ TEST_CASE("hub labels: a block's sphere bound is at most its whole bound", "[hub
     }
 }
 
+TEST_CASE("hub labels: a workspace's landmark ranges in steps hold the blob's ranges", "[hub]") {
+    // The query reads each block's landmark ranges from the workspace, in landmark steps (one
+    // cache line): every range as the query rebuilds it (steps times the scale, in float)
+    // must hold the blob's, so that a bound from it is never higher; and be at most a step
+    // wider at each end, or the bounds would lose their use.
+    const RuntimeGraph g = openOrFail(labelledBlob());
+    const vg_graph& graph = *g.graph();
+    REQUIRE(graph.hubBlockBounds != nullptr);
+    REQUIRE(graph.landmarkCount > 0);
+    RuntimeWorkspace ws(g.graph());
+    const uint32_t blocks = ws.get()->hubBlockBegin[graph.hubTreeCount], L = graph.landmarkCount;
+    const uint32_t stride = vg::blockRangeStride(L);
+    CHECK(stride * sizeof(uint16_t) % 64 == 0);
+    CHECK(reinterpret_cast<uintptr_t>(ws.get()->hubBlockRanges) % 64 == 0);  // a block: whole cache lines
+    size_t ranges = 0, bounded = 0, wide = 0, outside = 0;
+    for (uint32_t b = 0; b < blocks; ++b) {
+        const float* record = graph.hubBlockBounds + uint64_t(b) * (4 + 2 * L);
+        const uint16_t* steps = ws.get()->hubBlockRanges + uint64_t(b) * stride;
+        for (uint32_t k = 0; k < L; ++k) {
+            const float scale = graph.landmarkScale[k], lo = record[4 + 2 * k], hi = record[5 + 2 * k];
+            const float low = float(steps[k]) * scale;
+            const float high = steps[L + k] == vg::kNoRangeEnd ? INFINITY : float(steps[L + k]) * scale;
+            ++ranges;
+            outside += (std::isfinite(lo) && low > lo) || high < hi;
+            if (!std::isfinite(hi)) {
+                CHECK(steps[L + k] == vg::kNoRangeEnd);
+                continue;
+            }
+            ++bounded;
+            // A high end past the largest step (the baker widens its ranges by a millionth)
+            // can only be kept open.
+            const bool top = steps[L + k] == vg::kNoRangeEnd && hi > 65533.0f * scale;
+            wide += (lo > 0.0f && lo - low > 1.5f * scale) || (!top && high - hi > 1.5f * scale);
+        }
+    }
+    CHECK(ranges > 100);
+    CHECK(bounded > ranges / 2);
+    CHECK(outside == 0);
+    CHECK(wide == 0);
+}
+
 TEST_CASE("hub labels: the portable and AVX2 label kernels give the same answers", "[hub]") {
     RuntimeGraph g = openOrFail(labelledBlob());
     if (!g.graph()->avx2) WARN("this CPU has no AVX2: only the portable kernels run");
@@ -585,6 +626,9 @@ TEST_CASE("hub labels: tables that do not add up are refused", "[hub]") {
     CHECK(refused(bounds + 4, 0x7FC00000u));                                 // a NaN centre
     if (g->landmark_scale() && g->landmark_scale()->size() > 0)
         CHECK(refused(bounds + 16, 0x7F800000u));                            // a range from +inf (above its end)
+    REQUIRE(g->hub_landmarks() != nullptr);
+    const size_t hubLandmarks = offsetOf(g->hub_landmarks()->data());
+    CHECK(refused(hubLandmarks - 4, g->hub_landmarks()->size() - 1));         // a hub's landmark short
     REQUIRE(g->hub_exit_lists() != nullptr);
     const size_t lists = offsetOf(g->hub_exit_lists()->data());
     CHECK(refused(lists, 0xFFFFu));                                          // an exit past the patch's exits

@@ -48,7 +48,7 @@
 #define VG_VERSION_NUMBER ((VG_VERSION_MAJOR << 16) | (VG_VERSION_MINOR << 8) | VG_VERSION_PATCH)
 /* Blob format this library reads. Independent of the library version: it changes only
  * when the bytes of a .vgeo file change meaning (docs/FORMAT.md). */
-#define VG_BLOB_FORMAT_VERSION 11
+#define VG_BLOB_FORMAT_VERSION 12
 
 #ifdef __cplusplus
 extern "C" {

@@ -98,6 +98,7 @@ struct vg_graph {
     const uint64_t* hubInnerMatrixBegin;  // first-layer patches + 1, into hubInner
     const uint16_t* hubInner;
     const float* hubBlockBounds;        // per block of kHubBlock hubs: sphere, landmark ranges; null: none
+    const uint16_t* hubLandmarks;       // per hub its landmark steps in the labels' metric (H x K); null: no landmarks
     // Per second-layer patch, the exits a label query needs in each block of its tree path
     // (vorogeo.fbs hub_exit_*); null: none, every exit is read.
     const uint32_t* hubExitPatchBegin;  // second-layer patches + 1, into hubExitListBegin

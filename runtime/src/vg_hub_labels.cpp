@@ -515,7 +515,7 @@ SideRows sideRows(const vg_graph& g, const vg_workspace& ws, uint32_t x, const S
 // Which first-layer nodes of an endpoint's patch a query reads. A node n of s's patch can
 // only carry a shortest path to t if d(s, n) + d(n, t) is at most the answer, and d(n, t)
 // is at least the straight line and the landmark bounds: the labels of the other nodes
-// are never read. The landmark bounds hold in the labels' own metric (vg_hub_landmarks.h)
+// are never read. The landmark bounds hold in the labels' own metric (baker/hub_landmarks.h)
 // up to the rounding they allow for; the straight line, a bound of the geodesic, is below
 // a label distance only by the labels' rounding (steps, the patches' quanta), which this
 // factor covers.
@@ -611,7 +611,7 @@ VG_AVX2_TARGET void landmarksThroughGroupsAvx2(const vg_graph& g, const vg_works
 
 // x's landmark distances through the first-layer nodes of its patch: the best of x's
 // distance to each (v, in label steps) plus its landmark distance in the labels' metric
-// (vg_hub_landmarks.h). Every label path from x leaves through one of them, and l(x) so
+// (the blob's hub landmarks, baker/hub_landmarks.h). Every label path from x leaves through one of them, and l(x) so
 // defined keeps |l(h) - l(x)| at most x's label distance to any hub h: l(h) <= l(a) +
 // d(a, h) for the node a that x's path to h leaves by, and l(a) <= l(b) + v[a] + v[b]
 // for the node b that gives l(x) (the patch's matrix entry between them is at most the
@@ -634,7 +634,7 @@ void landmarksThroughSlots(const vg_graph& g, const vg_workspace& ws, uint32_t f
 constexpr float kLandmarkSlackSteps = 4.0f;
 
 // An endpoint's position and landmark distances in the labels' metric: a hub's own
-// (vg_hub_landmarks.h), else through its patch's first-layer nodes (v: its distances to
+// (baker/hub_landmarks.h), else through its patch's first-layer nodes (v: its distances to
 // them).
 void endpointBounds(const vg_graph& g, const vg_workspace& ws, uint32_t x, const Side& side, const uint16_t* v,
                     EndpointBounds& b) {
@@ -644,8 +644,8 @@ void endpointBounds(const vg_graph& g, const vg_workspace& ws, uint32_t x, const
         landmarksThroughSlots(g, ws, side.first, v, b.landmarks);
         return;
     }
-    const uint16_t* steps = ws.hubLandmarks + uint64_t(side.hub) * g.landmarkCount;
-    for (uint32_t k = 0; k < g.landmarkCount; ++k) b.landmarks[k] = landmarkStepsDistance(g, k, steps[k]);
+    for (uint32_t k = 0; k < g.landmarkCount; ++k)
+        b.landmarks[k] = landmarkStepsDistance(g, k, g.hubLandmarks[uint64_t(side.hub) * g.landmarkCount + k]);
 }
 
 // A block's bounds as the query reads them: its sphere (centre, radius) and its landmark

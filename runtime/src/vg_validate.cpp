@@ -231,6 +231,7 @@ bool decodedArraysApart(const vorogeo::fb::Graph* g) {
     add(g->hub_inner_node());
     add(g->hub_inner_matrix_begin());
     add(g->hub_block_bounds());
+    add(g->hub_landmarks());
     add(g->hub_exit_patch_begin());
     add(g->hub_exit_lists());
     if (full) return false;
@@ -245,6 +246,7 @@ bool hubsValid(const vorogeo::fb::Graph* g, uint64_t flatbufferSize, const Table
     out.hubCount = 0;
     out.hubMaxPath = 0;
     out.hubBlockBounds = nullptr;
+    out.hubLandmarks = nullptr;
     out.hubExitPatchBegin = nullptr;
     out.hubExitListBegin = nullptr;
     out.hubExitLists = nullptr;
@@ -252,7 +254,7 @@ bool hubsValid(const vorogeo::fb::Graph* g, uint64_t flatbufferSize, const Table
     const uint64_t columnCount = g->hub_columns_count(), innerCount = g->hub_inner_count();
     const bool any = T != 0 || g->hub_first_leaf() || g->node_hub() || g->hub_column_begin() || columnCount != 0 ||
                      g->hub_inner_begin() || g->hub_inner_node() || g->hub_inner_matrix_begin() || innerCount != 0 ||
-                     g->hub_block_bounds() || tables.size != 0;
+                     g->hub_block_bounds() || g->hub_landmarks() || tables.size != 0;
     if (!any) return true;
     // The tables after the flatbuffer: exactly the bytes their counts take.
     vg_label_tables at;
@@ -342,6 +344,13 @@ bool hubsValid(const vorogeo::fb::Graph* g, uint64_t flatbufferSize, const Table
                 if (!(r[4 + 2 * k] <= r[5 + 2 * k])) return false;  // also NaN
         }
         out.hubBlockBounds = bounds;
+    }
+    // The hubs' landmark distances: every hub's, whenever there are landmarks (any values).
+    const uint64_t landmarkEntries = uint64_t(out.hubCount) * out.landmarkCount;
+    if (count(g->hub_landmarks()) != landmarkEntries) return false;
+    if (landmarkEntries != 0) {
+        if (!aligned(raw(g->hub_landmarks()))) return false;
+        out.hubLandmarks = raw(g->hub_landmarks());
     }
     return exitListsValid(g, out);
 }

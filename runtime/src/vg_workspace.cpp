@@ -126,8 +126,6 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.hubSlotHub = L.take<uint32_t>(candidates);
     o.hubSlotPositions = L.take<float>(candidates * 3);
     o.hubSlotLandmarks = L.take<uint16_t>(candidates * uint64_t(g.landmarkCount));
-    o.hubLandmarks = L.take<uint16_t>(g.hubTreeCount ? uint64_t(g.hubCount) * g.landmarkCount : 0);
-    o.hubLandmarkScratch = vg::takeHubLandmarkScratch(g, L);
     o.hubBlocks = L.take<vg::HubBlockRef>(pathBlocks);
     o.hubBlocksAbove = L.take<uint32_t>(g.hubTreeCount);
     // kRowBuffers blocks' rows of one side: every exit once, or each of its patches' lists.
@@ -170,35 +168,39 @@ void fillNodeRecords(const vg_graph& g, float* records) {
 
 // Each block's bounds as a query reads them. Its sphere (the record's first four fields)
 // side by side with the other blocks', so that the first bounds of a tree path's blocks are
-// a few cache lines. Its landmark ranges in landmark steps (vg_workspace.h): the least and
-// largest of its hubs' landmark distances in the labels' metric (hubLandmarks), which the
-// blob's ranges (over the landmark table) cannot bound; a landmark some hub of the block
-// does not reach keeps no bound (0, kNoRangeEnd).
-void fillHubBlockBounds(const vg_graph& g, const uint16_t* hubLandmarks, float* spheres, uint16_t* ranges) {
+// a few cache lines. Its landmark ranges in landmark steps (vg_workspace.h): the low end
+// rounded down and the high end up, so that the steps times the scale, as the query
+// computes it, never narrow the blob's range (which the baker writes as its hubs' steps
+// times the scale: the same steps come back); a range without ends (or NaN) keeps no
+// bound (0, kNoRangeEnd).
+void fillHubBlockBounds(const vg_graph& g, float* spheres, uint16_t* ranges) {
     if (g.hubBlockBounds == nullptr) return;
     const uint32_t L = g.landmarkCount, stride = vg::blockRangeStride(L);
-    const uint64_t record = 4 + 2 * uint64_t(L);
-    uint64_t b = 0;
-    for (uint32_t t = 0; t < g.hubTreeCount; ++t) {
-        const vg::HubTreeNode& node = g.hubTree[t];
-        for (uint32_t first = node.hubBegin; first < node.hubBegin + node.hubCount; first += vg::kHubBlock, ++b) {
-            const float* in = g.hubBlockBounds + b * record;
-            for (uint32_t k = 0; k < 4; ++k) spheres[4 * b + k] = in[k];
-            uint16_t* out = ranges + b * stride;
-            for (uint32_t k = 0; k < stride; ++k) out[k] = 0;
-            const uint32_t end = first + vg::kHubBlock < node.hubBegin + node.hubCount ? first + vg::kHubBlock
-                                                                                      : node.hubBegin + node.hubCount;
-            for (uint32_t k = 0; k < L; ++k) {
-                uint16_t lo = vg::kLandmarkUnreachable, hi = 0;
-                for (uint32_t h = first; h < end; ++h) {
-                    const uint16_t steps = hubLandmarks[uint64_t(h) * L + k];
-                    lo = steps < lo ? steps : lo;
-                    hi = steps > hi ? steps : hi;
-                }
-                const bool bounded = hi != vg::kLandmarkUnreachable;
-                out[k] = bounded ? lo : 0;
-                out[L + k] = bounded ? hi : vg::kNoRangeEnd;
+    const uint64_t record = 4 + 2 * uint64_t(L), blocks = hubBlockCount(g);
+    for (uint64_t b = 0; b < blocks; ++b) {
+        const float* in = g.hubBlockBounds + b * record;
+        for (uint32_t k = 0; k < 4; ++k) spheres[4 * b + k] = in[k];
+        uint16_t* out = ranges + b * stride;
+        for (uint32_t k = 0; k < stride; ++k) out[k] = 0;
+        for (uint32_t k = 0; k < L; ++k) {
+            const float lo = in[4 + 2 * k], hi = in[5 + 2 * k];
+            const float scale = g.landmarkScale[k];
+            uint32_t loSteps = 0, hiSteps = vg::kNoRangeEnd;
+            if (scale > 0.0f && lo > 0.0f) {  // also false for NaN
+                const double x = double(lo) / double(scale);
+                loSteps = x < 65534.0 ? uint32_t(x) : 65534u;
+                while (loSteps > 0 && float(loSteps) * scale > lo) --loSteps;
+                // The largest such step: a range the baker wrote as steps times the scale
+                // comes back as those steps (the quotient may fall just below them).
+                while (loSteps < 65534u && float(loSteps + 1) * scale <= lo) ++loSteps;
             }
+            if (scale > 0.0f && hi >= 0.0f && hi < 65534.0f * scale) {
+                hiSteps = uint32_t(double(hi) / double(scale)) + 1;
+                while (hiSteps > 0 && float(hiSteps - 1) * scale >= hi) --hiSteps;
+                while (hiSteps < vg::kNoRangeEnd && float(hiSteps) * scale < hi) ++hiSteps;
+            }
+            out[k] = uint16_t(loSteps);
+            out[L + k] = uint16_t(hiSteps);
         }
     }
 }
@@ -217,8 +219,8 @@ void fillHubBlockBegin(const vg_graph& g, uint32_t* begin) {
 // their node records side by side in groups of kRecordLanes, field by field
 // (vg_workspace.h), so that the bounds of a group are one vector step. Each patch starts a
 // group; the slots that pad its last group are kNone.
-void fillHubSlotRecords(const vg_graph& g, const uint16_t* hubLandmarks, uint32_t* begin, uint32_t* order,
-                        uint32_t* hubs, float* positions, uint16_t* landmarks) {
+void fillHubSlotRecords(const vg_graph& g, uint32_t* begin, uint32_t* order, uint32_t* hubs, float* positions,
+                        uint16_t* landmarks) {
     const uint32_t L = g.landmarkCount;
     uint32_t next = 0;
     auto hubOf = [&](uint32_t p, uint32_t k) { return g.nodeHub[g.slots[g.first[p].slotBegin + k]]; };
@@ -238,7 +240,7 @@ void fillHubSlotRecords(const vg_graph& g, const uint16_t* hubLandmarks, uint32_
             const float* p = node == vg::kNone ? nullptr : g.positions + 3 * uint64_t(g.nodeVertex[node]);
             for (uint32_t a = 0; a < 3; ++a) vg::slotPosition(positions, i, a) = p ? p[a] : 0.0f;
             for (uint32_t k = 0; k < L; ++k)
-                vg::slotLandmark(landmarks, L, i, k) = node == vg::kNone ? 0 : hubLandmarks[uint64_t(hubs[i]) * L + k];
+                vg::slotLandmark(landmarks, L, i, k) = node == vg::kNone ? 0 : g.hubLandmarks[uint64_t(hubs[i]) * L + k];
         }
     }
     begin[g.firstCount] = next;
@@ -324,15 +326,14 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
     clearStamps(*ws);
     fillNodeRecords(*graph, ws->nodeRecords);
     fillHubBlockBegin(*graph, ws->hubBlockBegin);
-    if (graph->hubTreeCount) vg::computeHubLandmarks(*graph, ws->hubLandmarkScratch, ws->hubLandmarks);
-    fillHubBlockBounds(*graph, ws->hubLandmarks, ws->hubBlockSpheres, ws->hubBlockRanges);
+    fillHubBlockBounds(*graph, ws->hubBlockSpheres, ws->hubBlockRanges);
     for (uint32_t t = 0; t < graph->hubTreeCount; ++t) {
         ws->hubSubtreeEnd[t] = vg::hubSubtreeEnd(graph->hubTree, graph->hubTreeCount, graph->hubCount, t);
         const uint32_t parent = graph->hubTree[t].parent;  // preorder: filled before t
         ws->hubBlocksAbove[t] = parent == vg::kNone ? 0 : ws->hubBlocksAbove[parent] + ws->hubBlockBegin[parent + 1] - ws->hubBlockBegin[parent];
     }
     if (graph->hubTreeCount) {
-        fillHubSlotRecords(*graph, ws->hubLandmarks, ws->hubSlotRecordBegin, ws->hubSlotOrder, ws->hubSlotHub,
+        fillHubSlotRecords(*graph, ws->hubSlotRecordBegin, ws->hubSlotOrder, ws->hubSlotHub,
                            ws->hubSlotPositions, ws->hubSlotLandmarks);
         fillHubPatchReach(*graph, ws->hubPatchReach);
         fillHubInnerRows(*graph, ws->hubInnerRowOfSlot);

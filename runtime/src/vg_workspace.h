@@ -5,7 +5,6 @@
 #pragma once
 
 #include "vg_field_kernels.h"
-#include "vg_hub_landmarks.h"
 #include "vg_point.h"
 
 namespace vg {
@@ -258,12 +257,9 @@ struct vg_workspace {
     uint32_t* hubSlotRecordBegin;  // ... per first-layer patch (+ 1) its first exit candidate,
     uint32_t* hubSlotOrder;        // ... per patch its slots that are hubs, in hub order (kNone pads),
     uint32_t* hubSlotHub;          // ... their hub numbers (kNone pads),
-    float* hubSlotPositions;       // ... and their nodes' positions and landmark distances (hubLandmarks)
-    uint16_t* hubSlotLandmarks;    //     by groups of kRecordLanes (slotPosition, slotLandmark; all
-                                   //     five filled at init),
-    uint16_t* hubLandmarks;        // ... per hub its landmark distances in the labels' metric, in
-                                   //     landmark steps (vg_hub_landmarks.h; filled at init),
-    vg::HubLandmarkScratch hubLandmarkScratch;  // ... and what computing them takes (init only),
+    float* hubSlotPositions;       // ... and their nodes' positions and landmark distances (the
+    uint16_t* hubSlotLandmarks;    //     blob's hub landmarks) by groups of kRecordLanes
+                                   //     (slotPosition, slotLandmark; all five filled at init),
     vg::HubBlockRef* hubBlocks;    // ... and the blocks of the common tree path a query reads,
     uint32_t* hubBlocksAbove;      // ... per tree node the blocks of its proper ancestors (filled at init),
     uint16_t* hubBlockRows;        // ... a side's exits with rows in a block, for the block at hand and

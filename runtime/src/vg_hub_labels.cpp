@@ -611,13 +611,14 @@ VG_AVX2_TARGET void landmarksThroughGroupsAvx2(const vg_graph& g, const vg_works
 
 // x's landmark distances through the first-layer nodes of its patch: the best of x's
 // distance to each (v, in label steps) plus its landmark distance in the labels' metric
-// (the blob's hub landmarks, baker/hub_landmarks.h). Every label path from x leaves through one of them, and l(x) so
-// defined keeps |l(h) - l(x)| at most x's label distance to any hub h: l(h) <= l(a) +
-// d(a, h) for the node a that x's path to h leaves by, and l(a) <= l(b) + v[a] + v[b]
-// for the node b that gives l(x) (the patch's matrix entry between them is at most the
-// way through x), up to the rounding kLandmarkSlackSteps allows. The nodes' records are
-// the exit bounds' (read anyway), where the row nodes' landmark records would be one
-// scattered read each.
+// (the blob's hub landmarks, baker/hub_landmarks.h). Every label path from x leaves
+// through one of them, and l(x) so defined keeps |l(h) - l(x)| at most x's label distance
+// to any hub h: l(h) <= l(a) + d(a, h) for the node a that x's path to h leaves by, and
+// l(a) <= l(b) + v[a] + v[b] for the node b that gives l(x) (the patch's matrix entry
+// between them is at most the way through x), up to the rounding kLandmarkSlackSteps
+// allows. A landmark inside the patch needs no exception. The nodes' records are the exit
+// bounds' (read anyway), where the row nodes' landmark records would be one scattered
+// read each.
 void landmarksThroughSlots(const vg_graph& g, const vg_workspace& ws, uint32_t first, const uint16_t* v, float* out) {
     const uint32_t begin = ws.hubSlotRecordBegin[first], end = ws.hubSlotRecordBegin[first + 1];
 #if VG_HUB_AVX2

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "hub_labels.h"
 #include "parallel.h"
 #include "quad_heap.h"
 
@@ -10,7 +11,6 @@ namespace vorogeo {
 
 namespace {
 
-constexpr uint16_t kUnreachable = 65535;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // One landmark's values at every node: the table's at the first-layer nodes, then a
@@ -26,7 +26,7 @@ void lowerLandmark(const fb::Graph& g, const FirstLayerOverlay& o, uint32_t k, s
     const auto* firstBegin = g.node_first_begin();
     for (uint32_t n = 0; n < N; ++n) {
         const uint16_t q = g.node_landmarks()->Get(n * K + k);
-        if (firstBegin->Get(n) == firstBegin->Get(n + 1) || q == kUnreachable) continue;
+        if (firstBegin->Get(n) == firstBegin->Get(n + 1) || q == kHubUnreachable) continue;
         dist[n] = double(q) * scale;
         queue.push(n, before);
     }
@@ -51,7 +51,7 @@ void lowerLandmark(const fb::Graph& g, const FirstLayerOverlay& o, uint32_t k, s
 }
 
 uint16_t stepsDown(double d, float scale) {
-    if (!std::isfinite(d) || !(scale > 0.0f)) return kUnreachable;
+    if (!std::isfinite(d) || !(scale > 0.0f)) return kHubUnreachable;
     uint32_t steps = d / double(scale) < 65534.0 ? uint32_t(d / double(scale)) : 65534u;
     while (steps > 0 && double(float(steps) * scale) > d) --steps;  // the runtime's product
     return uint16_t(steps);
@@ -63,7 +63,7 @@ std::vector<uint16_t> hubLandmarkSteps(const fb::Graph& g, const FirstLayerOverl
                                        const std::vector<uint32_t>& hubNode) {
     const uint32_t K = g.landmark_scale() ? g.landmark_scale()->size() : 0;
     const size_t H = hubNode.size();
-    std::vector<uint16_t> out(H * K, kUnreachable);
+    std::vector<uint16_t> out(H * K, kHubUnreachable);
     if (K == 0) return out;
     struct Scratch {
         std::vector<double> dist;

@@ -18,7 +18,7 @@ namespace {
 
 const char* kUsage =
     "usage: vorogeo bench MESH BLOB [--pairs N] [--sources M] [--dijkstra-pairs D] [--seed S] [--json]\n"
-    "                    [--runtime-only] [--turn T]\n"
+    "                    [--runtime-only] [--turn T] [--no-endpoint-table]\n"
     "  Times, in one run on the same random vertices (1 thread):\n"
     "    runtime point-to-point on N pairs (default 1000; the workspace's default mode, hub\n"
     "    labels where the blob has them and else the directed search, and the thesis's\n"
@@ -32,7 +32,9 @@ const char* kUsage =
     "    vg_open took on the blob (open_ms: with --inner-rows-at-open it computes the inner rows),\n"
     "    and the p50 and p99 of fixed work as long as the point-to-point p50 (the host's own\n"
     "    timing noise, which lifts every p99: fixed_work_p50_us, fixed_work_p99_us).\n"
-    "  --runtime-only  time the runtime's queries alone (meshes too large for the exact engine)\n";
+    "  --runtime-only  time the runtime's queries alone (meshes too large for the exact engine)\n"
+    "  With hub labels the runtime's workspace reads an endpoint table (vg_endpoint_table_build;\n"
+    "  its bytes and build time are printed); --no-endpoint-table times the labels without one.\n";
 
 struct Errors {
     double sum = 0, max = 0;
@@ -48,7 +50,7 @@ struct Errors {
 }  // namespace
 
 int runBench(int argc, char** argv) {
-    cli::Args args(argc, argv, {"--pairs", "--sources", "--dijkstra-pairs", "--seed", "--turn"}, {"--json", "--help", "--repair", "--runtime-only"});
+    cli::Args args(argc, argv, {"--pairs", "--sources", "--dijkstra-pairs", "--seed", "--turn"}, {"--json", "--help", "--repair", "--runtime-only", "--no-endpoint-table"});
     if (args.flag("--help")) {
         std::printf("%s", kUsage);
         return 0;
@@ -74,6 +76,13 @@ int runBench(int argc, char** argv) {
 
     RuntimeWorkspace ws(graph), thesisWs(graph);
     thesisWs.setSearch(VG_SEARCH_BIDIRECTIONAL);
+    // Built for the fast mode only: the thesis's search never reads it.
+    const EndpointTable table(args.flag("--no-endpoint-table") ? nullptr : graph.graph());
+    ws.useTable(table);
+    char tableNote[96] = "";
+    if (table.get() != nullptr)
+        std::snprintf(tableNote, sizeof tableNote, " + endpoint table (%.1f MB, built in %.0f ms)", table.bytes() / 1e6,
+                      table.buildSeconds() * 1e3);
     volatile float sink = ws.distance(pairs[0].first, pairs[0].second);  // warm caches once
     sink = thesisWs.distance(pairs[0].first, pairs[0].second);
     std::vector<double> sssdUs, thesisSssdUs, msadMs, exactSsadMs, exactSssdMs, dijkstraSssdUs, dijkstraSsadMs;
@@ -119,16 +128,18 @@ int runBench(int argc, char** argv) {
             std::printf("{\"mesh\":\"%s\",\"mode\":\"%s\",\"vertices\":%u,\"blob_bytes\":%zu,\"pairs\":%zu,\"turn_pairs\":%zu,\"sources\":%zu,"
                         "\"sssd_p50_us\":%.2f,\"sssd_p99_us\":%.2f,\"bidirectional_sssd_p50_us\":%.2f,"
                         "\"bidirectional_sssd_p99_us\":%.2f,\"msad_p50_ms\":%.3f,\"open_ms\":%.1f,"
-                        "\"fixed_work_p50_us\":%.2f,\"fixed_work_p99_us\":%.2f}\n",
+                        "\"fixed_work_p50_us\":%.2f,\"fixed_work_p99_us\":%.2f,"
+                        "\"endpoint_table_bytes\":%zu,\"endpoint_table_build_ms\":%.1f}\n",
                         args.positional()[0].c_str(), mode, V, graph.blobBytes(), pairs.size(), turn, sources.size(), sssdP50,
-                        sssdP99, thesisP50, thesisP99, msad, graph.openSeconds() * 1e3, host.p50Us, host.p99Us);
+                        sssdP99, thesisP50, thesisP99, msad, graph.openSeconds() * 1e3, host.p50Us, host.p99Us,
+                        table.get() ? table.bytes() : size_t(0), table.buildSeconds() * 1e3);
         else
             std::printf("%s: %u vertices, blob %zu bytes (opened in %.1f ms); %zu pairs, %zu sources, 1 thread, runtime only\n"
-                        "point-to-point (%s) p50 %.1f us, p99 %.1f us (thesis's bidirectional search: p50 %.1f us, "
+                        "point-to-point (%s%s) p50 %.1f us, p99 %.1f us (thesis's bidirectional search: p50 %.1f us, "
                         "p99 %.1f us; %.2fx / %.2fx); one-to-all p50 %.2f ms\n"
                         "host noise: fixed work as long as the p50 takes p50 %.1f us, p99 %.1f us\n",
                         args.positional()[0].c_str(), V, graph.blobBytes(), graph.openSeconds() * 1e3, pairs.size(),
-                        sources.size(), mode, sssdP50, sssdP99, thesisP50, thesisP99, thesisP50 / sssdP50, thesisP99 / sssdP99,
+                        sources.size(), mode, tableNote, sssdP50, sssdP99, thesisP50, thesisP99, thesisP50 / sssdP50, thesisP99 / sssdP99,
                         msad, host.p50Us, host.p99Us);
         return 0;
     }
@@ -187,16 +198,18 @@ int runBench(int argc, char** argv) {
                     "\"speedup_sssd_vs_dijkstra\":%.2f,\"speedup_ssad_vs_dijkstra\":%.2f,"
                     "\"field_mean_rel_error\":%.6e,\"field_max_rel_error\":%.6e,"
                     "\"dijkstra_mean_rel_error\":%.6e,\"dijkstra_max_rel_error\":%.6e,\"open_ms\":%.1f,"
-                    "\"fixed_work_p50_us\":%.2f,\"fixed_work_p99_us\":%.2f}\n",
+                    "\"fixed_work_p50_us\":%.2f,\"fixed_work_p99_us\":%.2f,"
+                    "\"endpoint_table_bytes\":%zu,\"endpoint_table_build_ms\":%.1f}\n",
                     args.positional()[0].c_str(), mode, V, graph.blobBytes(), pairs.size(), turn, sources.size(), sssdP50,
                     sssdP99, thesisP50, thesisP99, msad, exactSssd, exactSsad, dijkstraSssd, dijkstraSsad, exactSssd * 1e3 / sssdP50,
                     exactSsad / msad, dijkstraSssd / sssdP50, dijkstraSsad / msad, runtimeErr.mean(), runtimeErr.max,
-                    dijkstraErr.mean(), dijkstraErr.max, graph.openSeconds() * 1e3, host.p50Us, host.p99Us);
+                    dijkstraErr.mean(), dijkstraErr.max, graph.openSeconds() * 1e3, host.p50Us, host.p99Us,
+                    table.get() ? table.bytes() : size_t(0), table.buildSeconds() * 1e3);
         return 0;
     }
     std::printf("%s: %u vertices, blob %zu bytes (opened in %.1f ms); %zu pairs, %zu sources, 1 thread\n",
                 args.positional()[0].c_str(), V, graph.blobBytes(), graph.openSeconds() * 1e3, pairs.size(), sources.size());
-    std::printf("runtime point-to-point: %s; bidirectional: the thesis's search on the same blob\n", mode);
+    std::printf("runtime point-to-point: %s%s; bidirectional: the thesis's search on the same blob\n", mode, tableNote);
     std::printf("%-34s %12s %12s %12s %14s\n", "", "runtime", "exact", "Dijkstra", "bidirectional");
     std::printf("%-34s %9.1f us %9.1f ms %9.1f us %11.1f us\n", "point-to-point p50", sssdP50, exactSssd, dijkstraSssd,
                 thesisP50);

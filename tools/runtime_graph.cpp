@@ -1,5 +1,6 @@
 #include "runtime_graph.h"
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -48,6 +49,27 @@ RuntimeWorkspace::RuntimeWorkspace(const vg_graph* graph) : graph_(graph) {
     memory_.resize(n);
     if (vg_workspace_init(graph_, memory_.data(), n, &ws_) != VG_OK) {
         std::fprintf(stderr, "vorogeo: cannot create a runtime workspace\n");
+        std::abort();
+    }
+}
+
+EndpointTable::EndpointTable(const vg_graph* graph) {
+    const size_t n = vg_endpoint_table_size(graph);
+    if (n == 0) return;  // no hub labels: nothing to build
+    memory_.resize(n);
+    const auto start = std::chrono::steady_clock::now();
+    const vg_status st = vg_endpoint_table_build(graph, memory_.data(), n, &table_);
+    buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (st != VG_OK) {
+        std::fprintf(stderr, "vorogeo: vg_endpoint_table_build: %s\n", vg_status_string(st));
+        std::abort();
+    }
+}
+
+void RuntimeWorkspace::useTable(const EndpointTable& table) const {
+    const vg_status st = vg_workspace_use_endpoint_table(ws_, table.get());
+    if (st != VG_OK) {
+        std::fprintf(stderr, "vorogeo: vg_workspace_use_endpoint_table: %s\n", vg_status_string(st));
         std::abort();
     }
 }

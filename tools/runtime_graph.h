@@ -39,6 +39,21 @@ private:
     double openSeconds_ = 0;
 };
 
+// The optional endpoint table of a graph with hub labels (vg_endpoint_table_build): owns
+// its memory; empty (no table) for a graph without labels.
+class EndpointTable {
+public:
+    explicit EndpointTable(const vg_graph* graph);
+    const vg_endpoint_table* get() const { return table_; }
+    size_t bytes() const { return memory_.size; }
+    double buildSeconds() const { return buildSeconds_; }
+
+private:
+    AlignedBytes memory_;
+    const vg_endpoint_table* table_ = nullptr;
+    double buildSeconds_ = 0;
+};
+
 class RuntimeWorkspace {
 public:
     explicit RuntimeWorkspace(const RuntimeGraph& g) : RuntimeWorkspace(g.graph()) {}
@@ -47,6 +62,7 @@ public:
 
     float distance(uint32_t s, uint32_t t) const;  // aborts the program on a status error
     void setSearch(vg_search_mode mode) const;      // the point-to-point search of later queries
+    void useTable(const EndpointTable& table) const;  // its label queries read the table (if any)
     std::vector<float> field(const std::vector<uint32_t>& sources) const;
     // The same into `out` (resized to the vertex count): a timing loop reuses one buffer, as
     // an engine would, rather than timing the allocation and first touch of a new one.

@@ -74,8 +74,9 @@ typedef enum vg_status {
     VG_ERR_NO_SLICED_QUERY = 15,    /* vg_distance_field_step without a live sliced query */
     VG_ERR_INVALID_POINT = 16,      /* face out of range, or barycentric weights NaN, negative
                                        or not summing to 1 (beyond VG_BARY_TOLERANCE) */
-    VG_ERR_PATH_FAILED = 17         /* vg_path could not trace a path on the surface (a defect:
+    VG_ERR_PATH_FAILED = 17,        /* vg_path could not trace a path on the surface (a defect:
                                        never seen in the tests; please report the blob and points) */
+    VG_ERR_NO_HUB_LABELS = 18       /* the graph has no hub labels (bake --hub-labels) */
 } vg_status;
 
 /* Human-readable, static, never NULL. Unknown codes give "unknown status". */
@@ -146,6 +147,28 @@ VG_API size_t vg_workspace_size(const vg_graph* graph);
  * pays for a page's first touch. */
 VG_API vg_status vg_workspace_init(const vg_graph* graph, void* memory, size_t memory_size,
                             vg_workspace** out_workspace);
+
+/* An endpoint table: optional, for faster hub-label queries at a memory cost. A label
+ * query otherwise works out each endpoint's distances to the first-layer nodes of its
+ * patch from the inner rows of its patch's ~55 border nodes, and meets next to the target
+ * through those rows again; the table holds the first per vertex and the rows per
+ * second-layer patch column by column, so that a query reads one row per endpoint and the
+ * columns of the exits it kept. The answers are the same bits. igea (134K vertices): about
+ * 120 MB, built in well under a second, p50 about -19% (BENCHMARKS.md). Built once per
+ * graph into caller memory, immutable: any number of workspaces and threads may read it.
+ * It must outlive the workspaces that use it; vg_workspace_use_endpoint_table(ws, NULL)
+ * detaches it. */
+typedef struct vg_endpoint_table vg_endpoint_table;
+/* Bytes the table needs for this graph; 0 when the graph has no hub labels (or is NULL). */
+VG_API size_t vg_endpoint_table_size(const vg_graph* graph);
+/* Builds the table inside `memory` (any alignment, at least vg_endpoint_table_size bytes);
+ * one thread. VG_ERR_NO_HUB_LABELS for a graph without labels. */
+VG_API vg_status vg_endpoint_table_build(const vg_graph* graph, void* memory, size_t memory_size,
+                                         const vg_endpoint_table** out_table);
+/* Lets the workspace's label queries read `table` (NULL: stop reading one);
+ * VG_ERR_WRONG_WORKSPACE when the table was built for another graph. Not concurrently
+ * with a query on the same workspace. */
+VG_API vg_status vg_workspace_use_endpoint_table(vg_workspace* workspace, const vg_endpoint_table* table);
 
 /* How a workspace's point-to-point queries (vg_distance, vg_distance_within,
  * vg_point_distance, vg_point_distance_within) find their answer (vg_path always searches

@@ -1,5 +1,6 @@
 #include "vg_hub_labels.h"
 
+#include "vg_endpoint_table.h"
 #include "vg_lower_bound.h"
 
 #if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
@@ -194,6 +195,11 @@ void innerSteps(const vg_graph& g, const vg_workspace& ws, uint32_t x, const Sid
     if (side.node != kNone && nodeActive(g, side.node)) {
         const uint32_t r = innerRow(g, first, side.node);
         if (r != kNone) lowerStepsOn(g, v, innerRowData(g, first, r), K, 0);
+        return;
+    }
+    if (side.node == kNone && ws.endpointTable != nullptr) {  // the same steps, worked out once
+        const uint16_t* row = endpointVertexRow(g, *ws.endpointTable, x);
+        for (uint32_t k = 0; k < K; ++k) v[k] = row[k];
         return;
     }
     // x's row entries lie a matrix column apart, a cache line each: they are gathered first,
@@ -1078,6 +1084,18 @@ float meetInPatch(const vg_graph& g, vg_workspace& ws, uint32_t t, uint32_t firs
     const uint32_t* slots = g.slots + p.slotBegin;
     float* fromS = ws.slotLabel;            // per node slot: s's distance (+inf: not met)
     float* toT = ws.patchNodeDistance;      // ... and t's (+inf: not met)
+    // With an endpoint table, s's distance to every node at once from the patch's columns
+    // of the exits that passed (w[k] < kNoStep), a fraction of its nodes' inner rows: the
+    // same minima, as a column of kNoStep or a sum saturated to it lowers nothing.
+    uint16_t* fromSteps = nullptr;
+    if (ws.endpointTable != nullptr) {
+        const uint32_t stride = endpointColumnStride(p.nodeCount);
+        const uint16_t* columns = ws.endpointTable->patchColumns + ws.endpointTable->patchColumnBegin[patch];
+        fromSteps = ws.hubPatchSteps;
+        for (uint32_t j = 0; j < stride; ++j) fromSteps[j] = kNoStep;
+        for (uint32_t k = 0; k < K; ++k)
+            if (w[k] != kNoStep) lowerStepsOn(g, fromSteps, columns + uint64_t(k) * stride, stride, w[k]);
+    }
     float best = inf;
     for (uint32_t j = 0; j < p.nodeCount; ++j) {
         fromS[j] = inf;
@@ -1087,7 +1105,7 @@ float meetInPatch(const vg_graph& g, vg_workspace& ws, uint32_t t, uint32_t firs
         const uint32_t q = quantum(g.secondDistances, entryIndex(p, slotT, j));
         if (q == kNoPathQuantum) continue;
         toT[j] = float(q) * p.scale;
-        const uint16_t steps = meetStepsOn(g, w, innerRowData(g, first, r), K);
+        const uint16_t steps = fromSteps ? fromSteps[j] : meetStepsOn(g, w, innerRowData(g, first, r), K);
         fromS[j] = steps == kNoStep ? inf : float(steps) * g.hubLabelScale;
         const float via = fromS[j] + toT[j];
         if (via < best) best = via;
@@ -1118,6 +1136,13 @@ float hubEndpointLandmarks(const vg_graph& g, vg_workspace& ws, uint32_t x, floa
     return b.slack;
 }
 
+uint32_t hubEndpointSteps(const vg_graph& g, vg_workspace& ws, uint32_t x, uint16_t* out) {
+    Side side;
+    if (g.hubTreeCount == 0 || g.vertexPatch[x] == kNone || !sideOf(g, x, side) || side.hub != kNone) return 0;
+    innerSteps(g, ws, x, side, out);
+    return g.first[side.first].slotCount;
+}
+
 float hubBlockBound(const vg_graph& g, vg_workspace& ws, uint32_t x, uint32_t block, bool sphereOnly) {
     Side side;
     if (g.hubTreeCount == 0 || g.hubBlockBounds == nullptr || g.vertexPatch[x] == kNone || !sideOf(g, x, side))
@@ -1136,6 +1161,42 @@ float hubBlockBound(const vg_graph& g, vg_workspace& ws, uint32_t x, uint32_t bl
     }
 #endif
     return blockBoundTo(g, bounds, b);
+}
+
+void fillEndpointTable(const vg_graph& g, vg_endpoint_table& table) {
+    uint64_t rowAt = 0, columnAt = 0;
+    for (uint32_t q = 0; q < g.secondCount; ++q) {
+        const Patch& p = g.second[q];
+        const uint32_t first = p.parent, K = g.first[first].slotCount, stride = endpointColumnStride(p.nodeCount);
+        table.vertexRowBegin[q] = rowAt;
+        table.patchColumnBegin[q] = columnAt;
+        uint16_t* columns = table.patchColumns + columnAt;
+        for (uint64_t i = 0; i < uint64_t(K) * stride; ++i) columns[i] = kNoStep;
+        for (uint32_t j = 0; j < p.nodeCount; ++j) {
+            const uint32_t n = g.slots[p.slotBegin + j];
+            const uint32_t r = nodeActive(g, n) ? innerRow(g, first, n) : kNone;
+            if (r == kNone) continue;
+            const uint16_t* row = innerRowData(g, first, r);
+            for (uint32_t k = 0; k < K; ++k) columns[uint64_t(k) * stride + j] = row[k];
+        }
+        // Each vertex's steps as innerSteps works them out: its entry to each active node
+        // with an inner row, then that row (a column here), the same saturating minima.
+        for (uint32_t i = p.nodeCount; i < p.slotCount; ++i, rowAt += K) {
+            uint16_t* v = table.vertexRows + rowAt;
+            for (uint32_t k = 0; k < K; ++k) v[k] = kNoStep;
+            for (uint32_t j = 0; j < p.nodeCount; ++j) {
+                const uint32_t n = g.slots[p.slotBegin + j];
+                const uint32_t r = nodeActive(g, n) ? innerRow(g, first, n) : kNone;
+                const uint32_t quanta = quantum(g.secondDistances, entryIndex(p, i, j));
+                if (r == kNone || quanta == kNoPathQuantum) continue;
+                const uint16_t base = toSteps(float(quanta) * p.scale, g.hubLabelScale);
+                if (base != kNoStep) lowerStepsOn(g, v, innerRowData(g, first, r), K, base);
+            }
+        }
+        columnAt += uint64_t(K) * stride;
+    }
+    table.vertexRowBegin[g.secondCount] = rowAt;
+    table.patchColumnBegin[g.secondCount] = columnAt;
 }
 
 uint32_t innerRow(const vg_graph& g, uint32_t first, uint32_t node) {

@@ -40,6 +40,16 @@ float hubEndpointLandmarks(const vg_graph& g, vg_workspace& ws, uint32_t x, floa
 // bounds. For the tests.
 float hubBlockBound(const vg_graph& g, vg_workspace& ws, uint32_t x, uint32_t block, bool sphereOnly = false);
 
+// Vertex x's distances in label steps to the first-layer nodes of its patch, as a label
+// query takes them (from the workspace's endpoint table where it has one), into
+// out[slot count of that patch]; that count, 0 when the labels do not answer for x. For
+// the tests.
+uint32_t hubEndpointSteps(const vg_graph& g, vg_workspace& ws, uint32_t x, uint16_t* out);
+
+// Fills an endpoint table laid out for g (vg_endpoint_table.h): every interior vertex's
+// steps as innerSteps works them out, and every second-layer patch's columns.
+void fillEndpointTable(const vg_graph& g, vg_endpoint_table& table);
+
 // Row of `node` among the inner rows of first-layer patch `first` (binary search of its
 // sorted node list), kNone if absent.
 uint32_t innerRow(const vg_graph& g, uint32_t first, uint32_t node);

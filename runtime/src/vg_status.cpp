@@ -22,6 +22,7 @@ extern "C" const char* vg_status_string(vg_status status) {
     case VG_ERR_NO_SLICED_QUERY: return "no time-sliced query in progress on this workspace (none begun, or another query abandoned it)";
     case VG_ERR_INVALID_POINT: return "invalid surface point (face out of range, or barycentric weights NaN, negative or not summing to 1)";
     case VG_ERR_PATH_FAILED: return "path tracing failed (a defect: please report the blob and points)";
+    case VG_ERR_NO_HUB_LABELS: return "the graph has no hub labels (bake with --hub-labels)";
     }
     return "unknown status";
 }

@@ -4,6 +4,7 @@
 
 #include "vg_path_taut.h"
 #include "vg_field_kernels.h"
+#include "vg_endpoint_table.h"
 #include "vg_huge_pages.h"
 #include "vg_hub_labels.h"
 #include "vg_layout.h"
@@ -49,6 +50,13 @@ uint64_t largestFirstPatch(const vg_graph& g) {
     uint64_t most = 0;
     for (uint32_t i = 0; i < g.firstCount; ++i)
         if (g.first[i].slotCount > most) most = g.first[i].slotCount;
+    return most;
+}
+
+uint64_t largestSecondPatchNodes(const vg_graph& g) {
+    uint64_t most = 0;
+    for (uint32_t i = 0; i < g.secondCount; ++i)
+        if (g.second[i].nodeCount > most) most = g.second[i].nodeCount;
     return most;
 }
 
@@ -133,6 +141,8 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.hubBlockRows = L.take<uint16_t>(vg::kRowBuffers * o.hubBlockRowsEach);
     o.hubPatchReach = L.take<float>(g.hubTreeCount ? g.secondCount : 0);
     o.hubInnerRowOfSlot = L.take<uint32_t>(g.hubTreeCount ? secondNodeSlotEnd(g) : 0);
+    o.hubPatchSteps = L.take<uint16_t>(g.hubTreeCount ? vg::endpointColumnStride(uint32_t(largestSecondPatchNodes(g))) : 0);
+    o.endpointTable = nullptr;
     o.graph = &g;
     o.generation = 0;
     o.slice = vg::FieldSlice{0, 0, 0, nullptr, nullptr, 0, nullptr, nullptr};

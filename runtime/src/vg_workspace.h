@@ -267,6 +267,8 @@ struct vg_workspace {
     float* hubPatchReach;          // ... per second-layer patch its longest node edge (filled at init)
     uint32_t* hubInnerRowOfSlot;   // ... per node slot of a second-layer patch its node's inner row in
                                    //     the patch's first-layer patch, kNone if none (filled at init)
+    uint16_t* hubPatchSteps;       // ... the source's distance to each node of t's patch (with a table),
+    const vg_endpoint_table* endpointTable;  // ... the table its label queries read, if any
 };
 
 namespace vg {

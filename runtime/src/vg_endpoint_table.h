@@ -1,0 +1,36 @@
+// The endpoint table (vorogeo.h, vg_endpoint_table_*): what a hub-label query otherwise
+// works out per endpoint from ~55 inner rows, stored per vertex and per second-layer
+// patch. Built once per graph into caller memory, read by any number of workspaces.
+// Internal to the runtime.
+#pragma once
+
+#include "vg_graph.h"
+
+struct vg_endpoint_table {
+    const vg_graph* graph;
+    // Per second-layer patch (secondCount + 1 offsets): the rows of its vertices that are
+    // no node, in slot order, each the vertex's distance in label steps to every slot of
+    // the patch's first-layer patch (its inner steps: what innerSteps computes).
+    uint64_t* vertexRowBegin;
+    uint16_t* vertexRows;
+    // Per second-layer patch (secondCount + 1 offsets): per slot k of its first-layer patch
+    // a column of endpointColumnStride(nodeCount) steps, entry j node j's inner row at k
+    // (kNoStep for a node without one and for the padding): the meeting next to t reads
+    // only the columns of the exits it kept.
+    uint64_t* patchColumnBegin;
+    uint16_t* patchColumns;
+};
+
+namespace vg {
+
+// A patch's columns are padded to whole AVX2 vectors of 16 steps.
+inline uint32_t endpointColumnStride(uint32_t nodeCount) { return (nodeCount + 15) / 16 * 16; }
+
+// Interior vertex x's row (x on no patch border: vertexNode(g, x) == kNone).
+inline const uint16_t* endpointVertexRow(const vg_graph& g, const vg_endpoint_table& table, uint32_t x) {
+    const uint32_t patch = g.vertexPatch[x];
+    const uint32_t K = g.first[g.second[patch].parent].slotCount;
+    return table.vertexRows + table.vertexRowBegin[patch] + uint64_t(g.vertexSlot[x] - g.second[patch].nodeCount) * K;
+}
+
+}  // namespace vg

@@ -1,0 +1,115 @@
+// The endpoint table (vg_endpoint_table_*, runtime/src/vg_endpoint_table.h): a label query
+// that reads it takes the same steps per endpoint and gives the same answers, bit for bit,
+// as one that works them out from the inner rows; pruned and full reads, on a plain graph
+// and on one whose pruning merged nodes away. The size query, the build and the
+// workspace's use of it refuse what they must.
+#include <catch2/catch.hpp>
+
+#include <random>
+#include <vector>
+
+#include "bake.h"
+#include "blob_test_helpers.h"
+#include "generators.h"
+#include "runtime_graph.h"
+#include "vg_hub_labels.h"
+#include "vorogeo.h"
+
+using namespace vorogeo;
+using tools::EndpointTable;
+using tools::RuntimeGraph;
+using tools::RuntimeWorkspace;
+
+namespace {
+
+std::vector<uint8_t> bakeTorus(bool hubLabels, double delta) {
+    BakeOptions o;
+    o.n1 = 10;
+    o.delta = delta;
+    o.hubLabels = hubLabels;
+    BakeReport report;
+    return bakeMesh(bumpyTorus(120, 40), o, report, nullptr);  // 4,800 vertices
+}
+
+}  // namespace
+
+TEST_CASE("endpoint table: the same steps and answers as without it", "[hub][table]") {
+    for (const double delta : {0.0, 0.002}) {
+        RuntimeGraph g = openOrFail(bakeTorus(true, delta));
+        const vg_graph& graph = *g.graph();
+        const EndpointTable table(g.graph());
+        REQUIRE(table.get() != nullptr);
+        RuntimeWorkspace plain(g.graph()), fast(g.graph());
+        fast.useTable(table);
+
+        // Every vertex's steps to its patch's first-layer nodes, entry by entry.
+        std::vector<uint16_t> mine(65536), theirs(65536);
+        size_t endpoints = 0, entries = 0;
+        for (uint32_t x = 0; x < graph.vertexCount; ++x) {
+            const uint32_t n = vg::hubEndpointSteps(graph, *plain.get(), x, mine.data());
+            REQUIRE(vg::hubEndpointSteps(graph, *fast.get(), x, theirs.data()) == n);
+            endpoints += n > 0;
+            for (uint32_t k = 0; k < n; ++k) entries += mine[k] != 65535;
+            CHECK(std::equal(mine.begin(), mine.begin() + n, theirs.begin()));
+        }
+        CHECK(endpoints > graph.vertexCount / 2);
+        CHECK(entries > endpoints * 10);  // real distances, not "no path"
+
+        // Random pairs: the label answers, pruned and full, and through the API.
+        std::mt19937 rng(5);
+        std::uniform_int_distribution<uint32_t> pick(0, graph.vertexCount - 1);
+        size_t answered = 0, differ = 0;
+        for (int i = 0; i < 3000; ++i) {
+            const uint32_t s = pick(rng), t = pick(rng);
+            for (const bool prune : {true, false}) {
+                float a = 0, b = 0;
+                const bool labelled = vg::hubDistance(graph, *plain.get(), s, t, __builtin_inff(), &a, prune);
+                REQUIRE(vg::hubDistance(graph, *fast.get(), s, t, __builtin_inff(), &b, prune) == labelled);
+                answered += labelled && prune;
+                differ += labelled && a != b;
+            }
+            differ += plain.distance(s, t) != fast.distance(s, t);
+        }
+        CHECK(answered > 1500);
+        CHECK(differ == 0);
+    }
+}
+
+TEST_CASE("endpoint table: size, build and use refuse what they must", "[hub][table]") {
+    RuntimeGraph labelled = openOrFail(bakeTorus(true, 0.0));
+    RuntimeGraph bare = openOrFail(bakeTorus(false, 0.0));
+    RuntimeGraph other = openOrFail(bakeTorus(true, 0.002));
+    const vg_graph* g = labelled.graph();
+
+    // No labels: nothing to build, and a status that says so.
+    CHECK(vg_endpoint_table_size(nullptr) == 0);
+    CHECK(vg_endpoint_table_size(bare.graph()) == 0);
+    std::vector<unsigned char> memory(vg_endpoint_table_size(g) + 1);
+    const vg_endpoint_table* table = nullptr;
+    CHECK(vg_endpoint_table_build(bare.graph(), memory.data(), memory.size(), &table) == VG_ERR_NO_HUB_LABELS);
+    CHECK(table == nullptr);
+    CHECK(std::string(vg_status_string(VG_ERR_NO_HUB_LABELS)).find("hub labels") != std::string::npos);
+
+    // Bad arguments and too little memory.
+    const size_t need = vg_endpoint_table_size(g);
+    REQUIRE(need > 0);
+    CHECK(vg_endpoint_table_build(g, memory.data(), need, nullptr) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(vg_endpoint_table_build(nullptr, memory.data(), need, &table) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(vg_endpoint_table_build(g, nullptr, need, &table) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(vg_endpoint_table_build(g, memory.data(), need - 1, &table) == VG_ERR_BUFFER_TOO_SMALL);
+    CHECK(table == nullptr);
+
+    // Any alignment: one byte past an aligned start.
+    REQUIRE(vg_endpoint_table_build(g, memory.data() + 1, need, &table) == VG_OK);
+    REQUIRE(table != nullptr);
+
+    // A workspace takes only its own graph's table; NULL detaches it.
+    RuntimeWorkspace ws(g), otherWs(other.graph());
+    CHECK(vg_workspace_use_endpoint_table(nullptr, table) == VG_ERR_INVALID_ARGUMENT);
+    CHECK(vg_workspace_use_endpoint_table(otherWs.get(), table) == VG_ERR_WRONG_WORKSPACE);
+    const float before = ws.distance(0, labelled.vertexCount() - 1);
+    CHECK(vg_workspace_use_endpoint_table(ws.get(), table) == VG_OK);
+    CHECK(ws.distance(0, labelled.vertexCount() - 1) == before);
+    CHECK(vg_workspace_use_endpoint_table(ws.get(), nullptr) == VG_OK);
+    CHECK(ws.distance(0, labelled.vertexCount() - 1) == before);
+}

@@ -18,18 +18,21 @@ constexpr size_t kAlign = 64;
 // Carves the table's arrays from L (L.base null: only measures); the header first.
 vg_endpoint_table* layOut(const vg_graph& g, Layout& L) {
     vg_endpoint_table* t = L.take<vg_endpoint_table>(1);
-    uint64_t rows = 0, columns = 0;
+    uint64_t rows = 0, columns = 0, entries = 0;
     for (uint32_t q = 0; q < g.secondCount; ++q) {
         const Patch& p = g.second[q];
         const uint64_t K = g.first[p.parent].slotCount;
         rows += uint64_t(p.slotCount - p.nodeCount) * K;
         columns += uint64_t(endpointColumnStride(p.nodeCount)) * K;
+        entries += uint64_t(p.slotCount - p.nodeCount) * p.nodeCount;
     }
     uint64_t* rowBegin = L.take<uint64_t>(uint64_t(g.secondCount) + 1);
     uint16_t* vertexRows = L.take<uint16_t>(rows);
     uint64_t* columnBegin = L.take<uint64_t>(uint64_t(g.secondCount) + 1);
     uint16_t* patchColumns = L.take<uint16_t>(columns);
-    if (t != nullptr) *t = vg_endpoint_table{&g, rowBegin, vertexRows, columnBegin, patchColumns};
+    uint64_t* entryBegin = L.take<uint64_t>(uint64_t(g.secondCount) + 1);
+    uint16_t* vertexEntries = L.take<uint16_t>(entries);
+    if (t != nullptr) *t = vg_endpoint_table{&g, rowBegin, vertexRows, columnBegin, patchColumns, entryBegin, vertexEntries};
     return t;
 }
 

@@ -19,6 +19,12 @@ struct vg_endpoint_table {
     // only the columns of the exits it kept.
     uint64_t* patchColumnBegin;
     uint16_t* patchColumns;
+    // Per second-layer patch (secondCount + 1 offsets): the same vertices' entries to the
+    // patch's nodes in quanta (the matrix's column of each, a cache line per node there);
+    // kNoPathQuantum also for a node the labels do not reach (merged away, or without an
+    // inner row), which the meeting next to t skips as it skips a missing entry.
+    uint64_t* vertexEntryBegin;
+    uint16_t* vertexEntries;
 };
 
 namespace vg {
@@ -31,6 +37,13 @@ inline const uint16_t* endpointVertexRow(const vg_graph& g, const vg_endpoint_ta
     const uint32_t patch = g.vertexPatch[x];
     const uint32_t K = g.first[g.second[patch].parent].slotCount;
     return table.vertexRows + table.vertexRowBegin[patch] + uint64_t(g.vertexSlot[x] - g.second[patch].nodeCount) * K;
+}
+
+// Interior vertex x's entries to its patch's nodes, in quanta (kNoPathQuantum: none).
+inline const uint16_t* endpointVertexEntries(const vg_graph& g, const vg_endpoint_table& table, uint32_t x) {
+    const uint32_t patch = g.vertexPatch[x];
+    const uint32_t n = g.second[patch].nodeCount;
+    return table.vertexEntries + table.vertexEntryBegin[patch] + uint64_t(g.vertexSlot[x] - n) * n;
 }
 
 }  // namespace vg

@@ -186,6 +186,20 @@ void forEachRowNode(const vg_graph& g, const vg_workspace& ws, uint32_t x, F&& f
     });
 }
 
+// Asks for what the meeting next to an interior target t reads of its own patch with an
+// endpoint table: t's entries there and the patch's edge list. Nothing else reads them
+// before the meeting; asked for at the start, they arrive while the labels are read.
+void prefetchTargetPatch(const vg_graph& g, const vg_endpoint_table& table, uint32_t t) {
+    const uint32_t patch = g.vertexPatch[t];
+    const Patch& p = g.second[patch];
+    const uint16_t* entries = endpointVertexEntries(g, table, t);
+    __builtin_prefetch(entries);
+    __builtin_prefetch(entries + p.nodeCount - 1);
+    const char* from = reinterpret_cast<const char*>(g.secondEdges + p.edgeBegin);
+    const char* to = reinterpret_cast<const char*>(g.secondEdges + patchEdgesEnd(g, patch));
+    for (; from < to; from += 64) __builtin_prefetch(from);
+}
+
 // v[k]: the distance inside the side's first-layer patch from vertex x to its k-th slot
 // (a first-layer node), in label steps: x's patch rows to the active nodes of its patches,
 // then their inner rows (an active node is an inner row itself).
@@ -1069,6 +1083,20 @@ inline float unfoldNodeEdge(uint32_t v, float fv, float bv, uint32_t x, float fx
     return d < best ? d : best;
 }
 
+// Which exits the meeting next to t must take, in steps: every exit k whose node path
+// w[k] + vT[k] (through its best node for t, vT being t's steps) is within this. `through`
+// is the best such path. The meeting looks at the nodes within `near` (the best node path
+// and the reach, meetInPatch) and at their neighbours across a node edge, whose paths are
+// longer by at most twice the edge (<= reach) and the entries' rounding (a patch quantum
+// each, a label step each for the inner rows). A node within that has its best exit here:
+// w[k] + vT[k] <= its path in steps plus half a step (t's rounded entry). The rest is slack
+// for the float sums.
+float exitLimit(const vg_graph& g, const Patch& p, uint16_t through, float reach) {
+    const float scale = g.hubLabelScale;
+    const float near = (float(through) + 0.5f) * scale * kCrossingMargin + reach;
+    return ((near + 2.0f * reach + 2.0f * p.scale) * kCrossingMargin) / scale + 4.0f;
+}
+
 // The meeting next to a target inside one second-layer patch (no node): s's distance to each
 // node of the patch (through the first-layer nodes of t's patch that passed, w) met with
 // t's row entry to it, then the unfolded crossings of the patch's node edges. The same
@@ -1076,7 +1104,7 @@ inline float unfoldNodeEdge(uint32_t v, float fv, float bv, uint32_t x, float fx
 // arrays and the patch's own edge list (with its lengths), instead of the search labels
 // and node edge lists, which are scattered reads all over the graph.
 float meetInPatch(const vg_graph& g, vg_workspace& ws, uint32_t t, uint32_t first, const uint16_t* w, bool prune,
-                  float reach) {
+                  float reach, const uint16_t* vT) {
     const float inf = __builtin_inff();
     const uint32_t patch = g.vertexPatch[t], slotT = g.vertexSlot[t];
     const Patch& p = g.second[patch];
@@ -1093,16 +1121,26 @@ float meetInPatch(const vg_graph& g, vg_workspace& ws, uint32_t t, uint32_t firs
         const uint16_t* columns = ws.endpointTable->patchColumns + ws.endpointTable->patchColumnBegin[patch];
         fromSteps = ws.hubPatchSteps;
         for (uint32_t j = 0; j < stride; ++j) fromSteps[j] = kNoStep;
+        const uint16_t through = meetStepsOn(g, w, vT, K);  // the best node path, in steps
+        if (through == kNoStep) return inf;                 // s reaches no node of the patch
+        const float limit = prune ? exitLimit(g, p, through, reach) : inf;
         for (uint32_t k = 0; k < K; ++k)
-            if (w[k] != kNoStep) lowerStepsOn(g, fromSteps, columns + uint64_t(k) * stride, stride, w[k]);
+            if (w[k] != kNoStep && !(float(saturatingSum(w[k], vT[k])) > limit))
+                lowerStepsOn(g, fromSteps, columns + uint64_t(k) * stride, stride, w[k]);
     }
+    const uint16_t* entriesT = ws.endpointTable ? endpointVertexEntries(g, *ws.endpointTable, t) : nullptr;
     float best = inf;
     for (uint32_t j = 0; j < p.nodeCount; ++j) {
         fromS[j] = inf;
         toT[j] = inf;
-        const uint32_t r = ws.hubInnerRowOfSlot[p.slotBegin + j];
-        if (r == kNone || !nodeActive(g, slots[j])) continue;
-        const uint32_t q = quantum(g.secondDistances, entryIndex(p, slotT, j));
+        uint32_t q, r = kNone;
+        if (entriesT != nullptr) {  // (no path also where the node is not reached: the table's)
+            q = entriesT[j];
+        } else {
+            r = ws.hubInnerRowOfSlot[p.slotBegin + j];
+            if (r == kNone || !nodeActive(g, slots[j])) continue;
+            q = quantum(g.secondDistances, entryIndex(p, slotT, j));
+        }
         if (q == kNoPathQuantum) continue;
         toT[j] = float(q) * p.scale;
         const uint16_t steps = fromSteps ? fromSteps[j] : meetStepsOn(g, w, innerRowData(g, first, r), K);
@@ -1197,6 +1235,19 @@ void fillEndpointTable(const vg_graph& g, vg_endpoint_table& table) {
     }
     table.vertexRowBegin[g.secondCount] = rowAt;
     table.patchColumnBegin[g.secondCount] = columnAt;
+    uint64_t entryAt = 0;
+    for (uint32_t q = 0; q < g.secondCount; ++q) {
+        const Patch& p = g.second[q];
+        table.vertexEntryBegin[q] = entryAt;
+        for (uint32_t i = p.nodeCount; i < p.slotCount; ++i)
+            for (uint32_t j = 0; j < p.nodeCount; ++j) {
+                const uint32_t n = g.slots[p.slotBegin + j];
+                const bool reached = nodeActive(g, n) && innerRow(g, p.parent, n) != kNone;
+                table.vertexEntries[entryAt++] =
+                    uint16_t(reached ? quantum(g.secondDistances, entryIndex(p, i, j)) : kNoPathQuantum);
+            }
+    }
+    table.vertexEntryBegin[g.secondCount] = entryAt;
 }
 
 uint32_t innerRow(const vg_graph& g, uint32_t first, uint32_t node) {
@@ -1223,6 +1274,7 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
         b = y;
     }
     const uint32_t lca = commonAncestor(g, a.tree, b.tree);
+    if (ws.endpointTable != nullptr && b.node == kNone) prefetchTargetPatch(g, *ws.endpointTable, t);
     prefetchExitLists(g, ws, s, a, lca, 0);
     prefetchExitLists(g, ws, t, b, lca, 0);
     const float scale = g.hubLabelScale;
@@ -1294,7 +1346,7 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
         for (uint32_t k = 0; k < fp.slotCount; ++k) w[k] = kNoStep;
         exitDistancesOn(g, exitsT, rowsT.count, acc, w);
         if (b.node == kNone && !generalMeeting) {  // t inside one second-layer patch: the common case
-            const float d = meetInPatch(g, ws, t, first, w, prune, reach);
+            const float d = meetInPatch(g, ws, t, first, w, prune, reach, vT);
             *out = d <= maxDistance ? d : __builtin_inff();
             return true;
         }

@@ -1083,6 +1083,43 @@ inline float unfoldNodeEdge(uint32_t v, float fv, float bv, uint32_t x, float fx
     return d < best ? d : best;
 }
 
+// d[j] = min(d[j], w[k] + columns[k][j]) for the `count` exits k listed in `taken`, j below
+// `stride` (a patch's columns, vg_endpoint_table.h).
+void lowerColumns(uint16_t* d, const uint16_t* columns, uint32_t stride, const uint16_t* taken, uint32_t count,
+                  const uint16_t* w) {
+    for (uint32_t i = 0; i < count; ++i) lowerSteps(d, columns + uint64_t(taken[i]) * stride, stride, w[taken[i]]);
+}
+
+#if VG_HUB_AVX2
+// The same numbers; a patch of up to 64 nodes (nearly all) keeps its minima in registers
+// rather than storing and reloading them after each column.
+VG_AVX2_TARGET void lowerColumnsAvx2(uint16_t* d, const uint16_t* columns, uint32_t stride, const uint16_t* taken,
+                                     uint32_t count, const uint16_t* w) {
+    if (stride > 64) {
+        for (uint32_t i = 0; i < count; ++i) lowerStepsAvx2(d, columns + uint64_t(taken[i]) * stride, stride, w[taken[i]]);
+        return;
+    }
+    const uint32_t vectors = stride / 16;
+    __m256i acc[4];
+    for (uint32_t v = 0; v < vectors; ++v) acc[v] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(d + 16 * v));
+    for (uint32_t i = 0; i < count; ++i) {
+        const uint16_t* column = columns + uint64_t(taken[i]) * stride;
+        const __m256i base = _mm256_set1_epi16(short(w[taken[i]]));
+        for (uint32_t v = 0; v < vectors; ++v)
+            acc[v] = _mm256_min_epu16(acc[v], _mm256_adds_epu16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(column + 16 * v)), base));
+    }
+    for (uint32_t v = 0; v < vectors; ++v) _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + 16 * v), acc[v]);
+}
+#endif
+
+void lowerColumnsOn(const vg_graph& g, uint16_t* d, const uint16_t* columns, uint32_t stride, const uint16_t* taken,
+                    uint32_t count, const uint16_t* w) {
+#if VG_HUB_AVX2
+    if (g.avx2) return lowerColumnsAvx2(d, columns, stride, taken, count, w);
+#endif
+    lowerColumns(d, columns, stride, taken, count, w);
+}
+
 // Which exits the meeting next to t must take, in steps: every exit k whose node path
 // w[k] + vT[k] (through its best node for t, vT being t's steps) is within this. `through`
 // is the best such path. The meeting looks at the nodes within `near` (the best node path
@@ -1124,9 +1161,19 @@ float meetInPatch(const vg_graph& g, vg_workspace& ws, uint32_t t, uint32_t firs
         const uint16_t through = meetStepsOn(g, w, vT, K);  // the best node path, in steps
         if (through == kNoStep) return inf;                 // s reaches no node of the patch
         const float limit = prune ? exitLimit(g, p, through, reach) : inf;
-        for (uint32_t k = 0; k < K; ++k)
-            if (w[k] != kNoStep && !(float(saturatingSum(w[k], vT[k])) > limit))
-                lowerStepsOn(g, fromSteps, columns + uint64_t(k) * stride, stride, w[k]);
+        // The columns taken, listed without branches (whether an exit is taken is a coin
+        // toss to the predictor) and asked for together (a few dozen misses, overlapped).
+        uint16_t* taken = ws.hubBlockRows;
+        uint32_t count = 0;
+        for (uint32_t k = 0; k < K; ++k) {
+            taken[count] = uint16_t(k);
+            count += uint32_t(w[k] != kNoStep) & uint32_t(!(float(saturatingSum(w[k], vT[k])) > limit));
+        }
+        for (uint32_t i = 0; i < count; ++i) {
+            const char* column = reinterpret_cast<const char*>(columns + uint64_t(taken[i]) * stride);
+            for (uint32_t b = 0; b < stride * 2; b += 64) __builtin_prefetch(column + b);
+        }
+        lowerColumnsOn(g, fromSteps, columns, stride, taken, count, w);
     }
     const uint16_t* entriesT = ws.endpointTable ? endpointVertexEntries(g, *ws.endpointTable, t) : nullptr;
     float best = inf;

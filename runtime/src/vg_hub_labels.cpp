@@ -186,20 +186,6 @@ void forEachRowNode(const vg_graph& g, const vg_workspace& ws, uint32_t x, F&& f
     });
 }
 
-// Asks for what the meeting next to an interior target t reads of its own patch with an
-// endpoint table: t's entries there and the patch's edge list. Nothing else reads them
-// before the meeting; asked for at the start, they arrive while the labels are read.
-void prefetchTargetPatch(const vg_graph& g, const vg_endpoint_table& table, uint32_t t) {
-    const uint32_t patch = g.vertexPatch[t];
-    const Patch& p = g.second[patch];
-    const uint16_t* entries = endpointVertexEntries(g, table, t);
-    __builtin_prefetch(entries);
-    __builtin_prefetch(entries + p.nodeCount - 1);
-    const char* from = reinterpret_cast<const char*>(g.secondEdges + p.edgeBegin);
-    const char* to = reinterpret_cast<const char*>(g.secondEdges + patchEdgesEnd(g, patch));
-    for (; from < to; from += 64) __builtin_prefetch(from);
-}
-
 // v[k]: the distance inside the side's first-layer patch from vertex x to its k-th slot
 // (a first-layer node), in label steps: x's patch rows to the active nodes of its patches,
 // then their inner rows (an active node is an inner row itself).
@@ -1321,7 +1307,6 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
         b = y;
     }
     const uint32_t lca = commonAncestor(g, a.tree, b.tree);
-    if (ws.endpointTable != nullptr && b.node == kNone) prefetchTargetPatch(g, *ws.endpointTable, t);
     prefetchExitLists(g, ws, s, a, lca, 0);
     prefetchExitLists(g, ws, t, b, lca, 0);
     const float scale = g.hubLabelScale;

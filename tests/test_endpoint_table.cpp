@@ -1,17 +1,21 @@
 // The endpoint table (vg_endpoint_table_*, runtime/src/vg_endpoint_table.h): a label query
 // that reads it takes the same steps per endpoint and gives the same answers, bit for bit,
 // as one that works them out from the inner rows; pruned and full reads, on a plain graph
-// and on one whose pruning merged nodes away. The size query, the build and the
-// workspace's use of it refuse what they must.
+// and on one whose pruning merged nodes away; the portable and AVX2 kernels build the same
+// bytes and read them alike. The size query, the build and the workspace's use of it
+// refuse what they must.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "bake.h"
 #include "blob_test_helpers.h"
 #include "generators.h"
 #include "runtime_graph.h"
+#include "vg_endpoint_table.h"
 #include "vg_hub_labels.h"
 #include "vorogeo.h"
 
@@ -112,4 +116,39 @@ TEST_CASE("endpoint table: size, build and use refuse what they must", "[hub][ta
     CHECK(ws.distance(0, labelled.vertexCount() - 1) == before);
     CHECK(vg_workspace_use_endpoint_table(ws.get(), nullptr) == VG_OK);
     CHECK(ws.distance(0, labelled.vertexCount() - 1) == before);
+}
+
+TEST_CASE("endpoint table: the portable and AVX2 kernels build and read it alike", "[hub][table]") {
+    RuntimeGraph g = openOrFail(bakeTorus(true, 0.0));
+    if (!g.graph()->avx2) WARN("this CPU has no AVX2: only the portable kernels run");
+    vg_graph portable = *g.graph();  // the same tables, the portable kernels
+    portable.avx2 = false;
+    const EndpointTable fast(g.graph());
+    std::vector<unsigned char> memory(vg_endpoint_table_size(&portable));
+    const vg_endpoint_table* plain = nullptr;
+    REQUIRE(vg_endpoint_table_build(&portable, memory.data(), memory.size(), &plain) == VG_OK);
+    const vg_endpoint_table& a = *fast.get();
+    const uint32_t P = portable.secondCount;
+    REQUIRE(a.vertexRowBegin[P] == plain->vertexRowBegin[P]);
+    REQUIRE(a.patchColumnBegin[P] == plain->patchColumnBegin[P]);
+    REQUIRE(a.vertexEntryBegin[P] == plain->vertexEntryBegin[P]);
+    CHECK(std::equal(a.vertexRows, a.vertexRows + a.vertexRowBegin[P], plain->vertexRows));
+    CHECK(std::equal(a.patchColumns, a.patchColumns + a.patchColumnBegin[P], plain->patchColumns));
+    CHECK(std::equal(a.vertexEntries, a.vertexEntries + a.vertexEntryBegin[P], plain->vertexEntries));
+
+    RuntimeWorkspace ws(g.graph());
+    ws.useTable(fast);
+    std::mt19937 rng(9);
+    std::uniform_int_distribution<uint32_t> pick(0, portable.vertexCount - 1);
+    size_t answered = 0, differ = 0;
+    for (int i = 0; i < 1000; ++i) {
+        const uint32_t s = pick(rng), t = pick(rng);
+        float x = 0, y = 0;
+        const bool labelled = vg::hubDistance(*g.graph(), *ws.get(), s, t, __builtin_inff(), &x);
+        REQUIRE(vg::hubDistance(portable, *ws.get(), s, t, __builtin_inff(), &y) == labelled);
+        answered += labelled;
+        differ += labelled && x != y;
+    }
+    CHECK(answered > 500);
+    CHECK(differ == 0);
 }

@@ -46,16 +46,25 @@ TEST_CASE("endpoint table: the same steps and answers as without it", "[hub][tab
         RuntimeWorkspace plain(g.graph()), fast(g.graph());
         fast.useTable(table);
 
-        // Every vertex's steps to its patch's first-layer nodes, entry by entry.
+        // Every vertex's steps to its patch's first-layer nodes, entry by entry, and its
+        // landmark distances.
         std::vector<uint16_t> mine(65536), theirs(65536);
-        size_t endpoints = 0, entries = 0;
+        std::vector<float> ownLandmarks(64), tableLandmarks(64);
+        size_t endpoints = 0, entries = 0, landmarked = 0;
         for (uint32_t x = 0; x < graph.vertexCount; ++x) {
             const uint32_t n = vg::hubEndpointSteps(graph, *plain.get(), x, mine.data());
             REQUIRE(vg::hubEndpointSteps(graph, *fast.get(), x, theirs.data()) == n);
             endpoints += n > 0;
             for (uint32_t k = 0; k < n; ++k) entries += mine[k] != 65535;
             CHECK(std::equal(mine.begin(), mine.begin() + n, theirs.begin()));
+            const float slack = vg::hubEndpointLandmarks(graph, *plain.get(), x, ownLandmarks.data());
+            CHECK(vg::hubEndpointLandmarks(graph, *fast.get(), x, tableLandmarks.data()) == slack);
+            if (slack < 0) continue;
+            ++landmarked;
+            CHECK(std::equal(ownLandmarks.begin(), ownLandmarks.begin() + graph.landmarkCount, tableLandmarks.begin()));
         }
+        CHECK(graph.landmarkCount > 0);
+        CHECK(landmarked > graph.vertexCount / 2);
         CHECK(endpoints > graph.vertexCount / 2);
         CHECK(entries > endpoints * 10);  // real distances, not "no path"
 
@@ -135,6 +144,8 @@ TEST_CASE("endpoint table: the portable and AVX2 kernels build and read it alike
     CHECK(std::equal(a.vertexRows, a.vertexRows + a.vertexRowBegin[P], plain->vertexRows));
     CHECK(std::equal(a.patchColumns, a.patchColumns + a.patchColumnBegin[P], plain->patchColumns));
     CHECK(std::equal(a.vertexEntries, a.vertexEntries + a.vertexEntryBegin[P], plain->vertexEntries));
+    const uint64_t landmarks = uint64_t(portable.vertexCount) * portable.landmarkCount;
+    CHECK(std::equal(a.vertexLandmarks, a.vertexLandmarks + landmarks, plain->vertexLandmarks));
 
     RuntimeWorkspace ws(g.graph());
     ws.useTable(fast);

@@ -32,7 +32,13 @@ vg_endpoint_table* layOut(const vg_graph& g, Layout& L) {
     uint16_t* patchColumns = L.take<uint16_t>(columns);
     uint64_t* entryBegin = L.take<uint64_t>(uint64_t(g.secondCount) + 1);
     uint16_t* vertexEntries = L.take<uint16_t>(entries);
-    if (t != nullptr) *t = vg_endpoint_table{&g, rowBegin, vertexRows, columnBegin, patchColumns, entryBegin, vertexEntries};
+    float* vertexLandmarks = L.take<float>(uint64_t(g.vertexCount) * g.landmarkCount);
+    uint64_t largest = 0;
+    for (uint32_t f = 0; f < g.firstCount; ++f) largest = g.first[f].slotCount > largest ? g.first[f].slotCount : largest;
+    float* scratch = L.take<float>((largest + 8) * (uint64_t(g.landmarkCount) + 1));
+    if (t != nullptr)
+        *t = vg_endpoint_table{&g, rowBegin, vertexRows, columnBegin, patchColumns, entryBegin, vertexEntries, vertexLandmarks,
+                               scratch};
     return t;
 }
 
@@ -59,6 +65,9 @@ extern "C" vg_status vg_endpoint_table_build(const vg_graph* graph, void* memory
     vg::adviseHugePages(memory, memory_size);  // before the first write (vg_huge_pages.h)
     unsigned char* base = reinterpret_cast<unsigned char*>(
         (reinterpret_cast<uintptr_t>(memory) + kAlign - 1) & ~uintptr_t(kAlign - 1));
+    // Every byte written once: the parts no vertex fills are defined (zeros), and no query
+    // pays for a page's first touch.
+    memset(base, 0, tableBytes(*graph) - (kAlign - 1));
     Layout L{base, kAlign};
     vg_endpoint_table* table = layOut(*graph, L);
     fillEndpointTable(*graph, *table);

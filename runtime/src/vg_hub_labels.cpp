@@ -647,6 +647,11 @@ void endpointBounds(const vg_graph& g, const vg_workspace& ws, uint32_t x, const
                     EndpointBounds& b) {
     b.position = g.positions + 3 * uint64_t(x);
     b.slack = kLandmarkSlackSteps * g.hubLabelScale;
+    if (side.node == kNone && ws.endpointTable != nullptr) {  // the same numbers, worked out once
+        const float* own = ws.endpointTable->vertexLandmarks + uint64_t(x) * g.landmarkCount;
+        for (uint32_t k = 0; k < g.landmarkCount; ++k) b.landmarks[k] = own[k];
+        return;
+    }
     if (side.hub == kNone) {
         landmarksThroughSlots(g, ws, side.first, v, b.landmarks);
         return;
@@ -1234,6 +1239,32 @@ float hubBlockBound(const vg_graph& g, vg_workspace& ws, uint32_t x, uint32_t bl
     return blockBoundTo(g, bounds, b);
 }
 
+// out[k]: the best over the n (a multiple of 8) entries of d[i] + lm[k * n + i], for k below
+// `count`: an endpoint's landmark distances through its patch's slots (d: its distances,
+// lm: the slots' landmark distances, +inf where none). Minima of the same sums as
+// landmarksThroughGroups, so the same numbers.
+void landmarksThroughRows(const float* d, const float* lm, uint32_t n, uint32_t count, float* out) {
+    for (uint32_t k = 0; k < count; ++k) {
+        float best = __builtin_inff();
+        for (uint32_t i = 0; i < n; ++i) {
+            const float through = d[i] + lm[uint64_t(k) * n + i];
+            best = through < best ? through : best;
+        }
+        out[k] = best;
+    }
+}
+
+#if VG_HUB_AVX2
+VG_AVX2_TARGET void landmarksThroughRowsAvx2(const float* d, const float* lm, uint32_t n, uint32_t count, float* out) {
+    for (uint32_t k = 0; k < count; ++k) {
+        __m256 best = _mm256_set1_ps(__builtin_inff());
+        for (uint32_t i = 0; i < n; i += 8)
+            best = _mm256_min_ps(_mm256_add_ps(_mm256_loadu_ps(d + i), _mm256_loadu_ps(lm + uint64_t(k) * n + i)), best);
+        out[k] = lanesMinimum(best);
+    }
+}
+#endif
+
 void fillEndpointTable(const vg_graph& g, vg_endpoint_table& table) {
     uint64_t rowAt = 0, columnAt = 0;
     for (uint32_t q = 0; q < g.secondCount; ++q) {
@@ -1250,8 +1281,19 @@ void fillEndpointTable(const vg_graph& g, vg_endpoint_table& table) {
             const uint16_t* row = innerRowData(g, first, r);
             for (uint32_t k = 0; k < K; ++k) columns[uint64_t(k) * stride + j] = row[k];
         }
+        // The slots' landmark distances (+inf for a slot that is no hub and for the padding).
+        const uint32_t L = g.landmarkCount, padded = (K + 7) / 8 * 8;
+        float* landmarks = table.scratch;
+        float* distances = table.scratch + uint64_t(L) * padded;
+        for (uint32_t k = 0; k < L; ++k)
+            for (uint32_t kk = 0; kk < padded; ++kk) {
+                const uint32_t hub = kk < K ? g.nodeHub[g.slots[g.first[first].slotBegin + kk]] : kNone;
+                landmarks[uint64_t(k) * padded + kk] =
+                    hub == kNone ? __builtin_inff() : landmarkStepsDistance(g, k, g.hubLandmarks[uint64_t(hub) * L + k]);
+            }
         // Each vertex's steps as innerSteps works them out: its entry to each active node
-        // with an inner row, then that row (a column here), the same saturating minima.
+        // with an inner row, then that row (a column here), the same saturating minima;
+        // then its landmark distances as endpointBounds takes them.
         for (uint32_t i = p.nodeCount; i < p.slotCount; ++i, rowAt += K) {
             uint16_t* v = table.vertexRows + rowAt;
             for (uint32_t k = 0; k < K; ++k) v[k] = kNoStep;
@@ -1263,6 +1305,14 @@ void fillEndpointTable(const vg_graph& g, vg_endpoint_table& table) {
                 const uint16_t base = toSteps(float(quanta) * p.scale, g.hubLabelScale);
                 if (base != kNoStep) lowerStepsOn(g, v, innerRowData(g, first, r), K, base);
             }
+            for (uint32_t kk = 0; kk < padded; ++kk)
+                distances[kk] = kk < K && v[kk] != kNoStep ? float(v[kk]) * g.hubLabelScale : __builtin_inff();
+            float* out = table.vertexLandmarks + uint64_t(g.slots[p.slotBegin + i]) * L;
+#if VG_HUB_AVX2
+            if (g.avx2) landmarksThroughRowsAvx2(distances, landmarks, padded, L, out);
+            else
+#endif
+                landmarksThroughRows(distances, landmarks, padded, L, out);
         }
         columnAt += uint64_t(K) * stride;
     }

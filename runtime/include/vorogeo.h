@@ -152,9 +152,10 @@ VG_API vg_status vg_workspace_init(const vg_graph* graph, void* memory, size_t m
  * query otherwise works out each endpoint's distances to the first-layer nodes of its
  * patch from the inner rows of its patch's ~55 border nodes, and meets next to the target
  * through those rows again; the table holds the first per vertex and the rows per
- * second-layer patch column by column, so that a query reads one row per endpoint and the
- * columns of the exits it kept. The answers are the same bits. igea (134K vertices): about
- * 120 MB, built in well under a second, p50 about -19% (BENCHMARKS.md). Built once per
+ * second-layer patch column by column, so that a query reads one row per endpoint, the
+ * columns of the exits that can matter, and takes its landmark distances as stored. The
+ * answers are the same bits. igea (134K vertices): 132 MB, built in 0.35-0.7 s, label
+ * queries p50 -25 to -30% (BENCHMARKS.md); igea x16: 2.1 GB. Built once per
  * graph into caller memory, immutable: any number of workspaces and threads may read it.
  * It must outlive the workspaces that use it; vg_workspace_use_endpoint_table(ws, NULL)
  * detaches it. */

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "bake.h"
@@ -162,4 +163,34 @@ TEST_CASE("endpoint table: the portable and AVX2 kernels build and read it alike
     }
     CHECK(answered > 500);
     CHECK(differ == 0);
+}
+
+TEST_CASE("endpoint table: threads sharing one table answer as one thread without it", "[hub][table]") {
+    // The table is read-only once built: workspaces on several threads read it at once.
+    RuntimeGraph g = openOrFail(bakeTorus(true, 0.0));
+    const EndpointTable table(g.graph());
+    const uint32_t V = vg_vertex_count(g.graph());
+    std::mt19937 rng(3);
+    std::uniform_int_distribution<uint32_t> pick(0, V - 1);
+    std::vector<std::pair<uint32_t, uint32_t>> pairs(600);
+    for (auto& p : pairs) p = {pick(rng), pick(rng)};
+    std::vector<float> expected;
+    {
+        RuntimeWorkspace ws(g.graph());
+        for (const auto& p : pairs) expected.push_back(ws.distance(p.first, p.second));
+    }
+    const unsigned threads = 4;
+    std::vector<size_t> mismatches(threads, 0);
+    std::vector<std::thread> pool;
+    for (unsigned t = 0; t < threads; ++t)
+        pool.emplace_back([&, t] {  // no Catch2 assertions on worker threads
+            RuntimeWorkspace ws(g.graph());
+            ws.useTable(table);
+            for (size_t i = 0; i < pairs.size(); ++i) {
+                const size_t k = (i + 150 * t) % pairs.size();
+                mismatches[t] += ws.distance(pairs[k].first, pairs[k].second) != expected[k];
+            }
+        });
+    for (auto& t : pool) t.join();
+    for (unsigned t = 0; t < threads; ++t) CHECK(mismatches[t] == 0);
 }

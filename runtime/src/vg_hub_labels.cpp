@@ -300,6 +300,7 @@ inline void exitsInBlock(const HubExit* exits, uint32_t count, const HubBlockRef
 // only the others.
 struct SideRows {
     const HubExit* exits;
+    const uint32_t* keptHubs;  // per exit its hub where the bounds kept it (steps < kNoStep), else kNone
     uint32_t count;
     uint32_t listCount;  // 0: no lists
     uint32_t listStart[kMaxSidePatches];  // per patch of the side: its first list in hubExitListBegin
@@ -315,15 +316,17 @@ uint32_t blockRows(const vg_graph& g, const SideRows& side, const HubBlockRef& r
         for (uint32_t e = begin; e < end; ++e) out[n++] = uint16_t(e);
         return n;
     }
-    if (side.count == 0) return 0;  // (the branch-free loop reads side.exits[0])
+    if (side.count == 0) return 0;  // (the branch-free loop reads side.keptHubs[0])
+    const uint32_t span = r.hi - r.lo;
     for (uint32_t i = 0; i < side.listCount; ++i) {
         const uint32_t list = side.listStart[i] + r.pathIndex;
-        // Branch-free: whether the bounds kept an exit is a coin toss to the predictor.
+        // Branch-free: whether the bounds kept an exit is a coin toss to the predictor. A
+        // dropped exit's hub is kNone, outside every block (one unsigned comparison).
         for (uint32_t m = g.hubExitListBegin[list]; m < g.hubExitListBegin[list + 1]; ++m) {
             const uint16_t e = g.hubExitLists[m];
-            const HubExit& x = side.exits[e < side.count ? e : 0];
+            const uint32_t hub = side.keptHubs[e < side.count ? e : 0];
             out[n] = e;
-            n += uint32_t(e < side.count) & uint32_t(x.steps != kNoStep) & uint32_t(inBlock(r, x.hub));
+            n += uint32_t(e < side.count) & uint32_t(hub - r.lo < span);
         }
     }
     return n;
@@ -493,10 +496,11 @@ void prefetchExitLists(const vg_graph& g, const vg_workspace& ws, uint32_t x, co
 // second-layer patches), every candidate, the others with steps kNoStep, and x's patches'
 // lists (SideRows).
 SideRows sideRows(const vg_graph& g, const vg_workspace& ws, uint32_t x, const Side& side, const uint16_t* v,
-                  const float* cost, float upper, bool lists, HubExit* exits) {
-    SideRows r{exits, 0, 0, {}};
+                  const float* cost, float upper, bool lists, HubExit* exits, uint32_t* keptHubs) {
+    SideRows r{exits, keptHubs, 0, 0, {}};
     if (side.hub != kNone) {
         exits[0] = HubExit{side.hub, 0, 0};
+        keptHubs[0] = side.hub;
         r.count = 1;
         return r;
     }
@@ -513,7 +517,10 @@ SideRows sideRows(const vg_graph& g, const vg_workspace& ws, uint32_t x, const S
         const uint32_t k = ws.hubSlotOrder[c];
         if (k == kNone) continue;  // the group's padding, after the candidates
         const bool usable = v[k] != kNoStep && !(cost[c - begin] > upper);
-        if (usable || r.listCount > 0) exits[r.count++] = HubExit{ws.hubSlotHub[c], k, usable ? v[k] : kNoStep};
+        if (usable || r.listCount > 0) {
+            keptHubs[r.count] = usable ? ws.hubSlotHub[c] : kNone;
+            exits[r.count++] = HubExit{ws.hubSlotHub[c], k, usable ? v[k] : kNoStep};
+        }
     }
     return r;
 }
@@ -1410,11 +1417,11 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
     HubExit* exitsS = ws.hubExits;
     HubExit* exitsT = ws.hubExits + (slotsS > 0 ? slotsS : 1);
     // The exit lists are exact, not bounds: the full reads (the tests' reference) go without.
-    const SideRows rowsS = sideRows(g, ws, s, a, vS, costS, upper, prune, exitsS);
+    const SideRows rowsS = sideRows(g, ws, s, a, vS, costS, upper, prune, exitsS, ws.hubExitHubs);
     sourceColumnsOn(g, ws, rowsS, blocks, blockCount, dS);
     if (bounded && hubT != kNone && upper != __builtin_inff())
         upper = tighterUpper(g, ws, blockCount, dS, hubT, baseT, scale + reach, upper);
-    const SideRows rowsT = sideRows(g, ws, t, b, vT, costT, upper, prune, exitsT);
+    const SideRows rowsT = sideRows(g, ws, t, b, vT, costT, upper, prune, exitsT, ws.hubExitHubs + (exitsT - ws.hubExits));
     uint16_t* acc = ws.hubExitSteps;
     targetColumnsOn(g, ws, dS, rowsT, blocks, blockCount, acc);
     float best = __builtin_inff();

@@ -120,6 +120,7 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.hubSteps = L.take<uint16_t>(pathBlocks * vg::kHubBlock);
     o.hubExitSteps = L.take<uint16_t>((patchSlots + 1) * vg::kHubBlock);
     o.hubExits = L.take<vg::HubExit>(2 * (patchSlots + 1));
+    o.hubExitHubs = L.take<uint32_t>(2 * (patchSlots + 1));
     o.hubSubtreeEnd = L.take<uint32_t>(g.hubTreeCount);
     o.hubSlotSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? largestFirstPatch(g) : 0) + 16);
     o.hubTargetSlotSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? largestFirstPatch(g) : 0) + 16);

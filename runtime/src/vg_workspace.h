@@ -243,6 +243,7 @@ struct vg_workspace {
     uint16_t* hubSteps;            // hub labels: the source's distance to the hubs of each block read,
     uint16_t* hubExitSteps;        // ... the source's distance through each target exit, per block lane,
     vg::HubExit* hubExits;         // ... both endpoints' exits (a patch's slots each, hub order),
+    uint32_t* hubExitHubs;         // ... and per exit its hub where the bounds kept it, else kNone,
     uint32_t* hubSubtreeEnd;       // ... per tree node the end of its subtree's hubs (filled at init),
     uint16_t* hubSlotSteps;        // ... an endpoint's to each first-layer node of its patch,
     uint16_t* hubTargetSlotSteps;  // ... the target's to each first-layer node of its patch,

@@ -1161,7 +1161,7 @@ float meetInPatch(const vg_graph& g, vg_workspace& ws, uint32_t t, uint32_t firs
         const float limit = prune ? exitLimit(g, p, through, reach) : inf;
         // The columns taken, listed without branches (whether an exit is taken is a coin
         // toss to the predictor) and asked for together (a few dozen misses, overlapped).
-        uint16_t* taken = ws.hubBlockRows;
+        uint16_t* taken = ws.hubBlockRows;  // the label kernels' row buffers: free again, and >= K
         uint32_t count = 0;
         for (uint32_t k = 0; k < K; ++k) {
             taken[count] = uint16_t(k);

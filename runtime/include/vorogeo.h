@@ -154,8 +154,9 @@ VG_API vg_status vg_workspace_init(const vg_graph* graph, void* memory, size_t m
  * through those rows again; the table holds the first per vertex and the rows per
  * second-layer patch column by column, so that a query reads one row per endpoint, the
  * columns of the exits that can matter, and takes its landmark distances as stored. The
- * answers are the same bits. igea (134K vertices): 132 MB, built in 0.35-0.7 s, label
- * queries p50 -25 to -30% (BENCHMARKS.md); igea x16: 2.1 GB. Built once per
+ * answers are the same bits. igea (134K vertices): 132 MB, built in 0.35-0.8 s, label
+ * queries p50 about -30% (-20% between other work's turns, BENCHMARKS.md); igea x16:
+ * 2.2 GB. Built once per
  * graph into caller memory, immutable: any number of workspaces and threads may read it.
  * It must outlive the workspaces that use it; vg_workspace_use_endpoint_table(ws, NULL)
  * detaches it. */

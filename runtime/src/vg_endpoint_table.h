@@ -25,9 +25,9 @@ struct vg_endpoint_table {
     // inner row), which the meeting next to t skips as it skips a missing entry.
     uint64_t* vertexEntryBegin;
     uint16_t* vertexEntries;
-    // Per vertex (landmarkCount floats each; only the interior ones filled): its landmark
-    // distances in the labels' metric as a label query takes them through its patch's
-    // first-layer nodes (landmarksThroughSlots).
+    // Per vertex (landmarkCount floats each; the interior ones filled, the others zeros):
+    // its landmark distances in the labels' metric as a label query takes them through
+    // its patch's first-layer nodes (landmarksThroughSlots).
     float* vertexLandmarks;
     // The build's scratch: one first-layer patch's hub landmark distances landmark by
     // landmark, then a vertex's distances to its slots (rows of the largest slot count,

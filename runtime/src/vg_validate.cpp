@@ -368,6 +368,12 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, const Tabl
         vorogeo::forEachCodedSequence(g, [](const flatbuffers::Vector<uint32_t>* v) {
             vg_code_sequence(const_cast<uint32_t*>(v->data()), v->size(), 1);
         });
+        // The arrays are apart from each other, but a crafted blob can lay a coded sequence
+        // over the flatbuffer's own structure (a table's offsets, a vtable, a vector's
+        // length), which decoding then rewrites: the structure is verified again as it is
+        // now, and the arrays found apart again, before anything is read through it.
+        flatbuffers::Verifier again(flatbuffer, size);
+        if (!vorogeo::fb::VerifyGraphBuffer(again) || !decodedArraysApart(g)) return VG_ERR_CORRUPT_STRUCTURE;
     }
 
     const uint64_t V = g->vertex_count();

@@ -36,9 +36,12 @@ vg_endpoint_table* layOut(const vg_graph& g, Layout& L) {
     uint64_t largest = 0;
     for (uint32_t f = 0; f < g.firstCount; ++f) largest = g.first[f].slotCount > largest ? g.first[f].slotCount : largest;
     float* scratch = L.take<float>((largest + 8) * (uint64_t(g.landmarkCount) + 1));
+    uint64_t nodes = 0;
+    for (uint32_t q = 0; q < g.secondCount; ++q) nodes = g.second[q].nodeCount > nodes ? g.second[q].nodeCount : nodes;
+    uint32_t* nodeRows = L.take<uint32_t>(nodes);
     if (t != nullptr)
         *t = vg_endpoint_table{&g, rowBegin, vertexRows, columnBegin, patchColumns, entryBegin, vertexEntries, vertexLandmarks,
-                               scratch};
+                               scratch, nodeRows};
     return t;
 }
 

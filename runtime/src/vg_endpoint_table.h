@@ -33,6 +33,7 @@ struct vg_endpoint_table {
     // landmark, then a vertex's distances to its slots (rows of the largest slot count,
     // padded to whole groups of 8, landmarkCount + 1 of them).
     float* scratch;
+    uint32_t* nodeRows;  // ... and one second-layer patch's nodes' inner rows (its largest node count)
 };
 
 namespace vg {

@@ -1273,19 +1273,22 @@ VG_AVX2_TARGET void landmarksThroughRowsAvx2(const float* d, const float* lm, ui
 #endif
 
 void fillEndpointTable(const vg_graph& g, vg_endpoint_table& table) {
-    uint64_t rowAt = 0, columnAt = 0;
+    uint64_t rowAt = 0, columnAt = 0, entryAt = 0;
     for (uint32_t q = 0; q < g.secondCount; ++q) {
         const Patch& p = g.second[q];
         const uint32_t first = p.parent, K = g.first[first].slotCount, stride = endpointColumnStride(p.nodeCount);
         table.vertexRowBegin[q] = rowAt;
         table.patchColumnBegin[q] = columnAt;
+        table.vertexEntryBegin[q] = entryAt;
+        // Each node's inner row (kNone: merged away, or none), found once for the patch.
+        uint32_t* rows = table.nodeRows;
         uint16_t* columns = table.patchColumns + columnAt;
         for (uint64_t i = 0; i < uint64_t(K) * stride; ++i) columns[i] = kNoStep;
         for (uint32_t j = 0; j < p.nodeCount; ++j) {
             const uint32_t n = g.slots[p.slotBegin + j];
-            const uint32_t r = nodeActive(g, n) ? innerRow(g, first, n) : kNone;
-            if (r == kNone) continue;
-            const uint16_t* row = innerRowData(g, first, r);
+            rows[j] = nodeActive(g, n) ? innerRow(g, first, n) : kNone;
+            if (rows[j] == kNone) continue;
+            const uint16_t* row = innerRowData(g, first, rows[j]);
             for (uint32_t k = 0; k < K; ++k) columns[uint64_t(k) * stride + j] = row[k];
         }
         // The slots' landmark distances (+inf for a slot that is no hub and for the padding).
@@ -1298,19 +1301,19 @@ void fillEndpointTable(const vg_graph& g, vg_endpoint_table& table) {
                 landmarks[uint64_t(k) * padded + kk] =
                     hub == kNone ? __builtin_inff() : landmarkStepsDistance(g, k, g.hubLandmarks[uint64_t(hub) * L + k]);
             }
-        // Each vertex's steps as innerSteps works them out: its entry to each active node
-        // with an inner row, then that row (a column here), the same saturating minima;
-        // then its landmark distances as endpointBounds takes them.
+        // Each vertex's entries to the nodes (no path where a node has no row), its steps as
+        // innerSteps works them out (its entry to each node with an inner row, then that
+        // row, the same saturating minima), then its landmark distances as endpointBounds
+        // takes them.
         for (uint32_t i = p.nodeCount; i < p.slotCount; ++i, rowAt += K) {
             uint16_t* v = table.vertexRows + rowAt;
             for (uint32_t k = 0; k < K; ++k) v[k] = kNoStep;
             for (uint32_t j = 0; j < p.nodeCount; ++j) {
-                const uint32_t n = g.slots[p.slotBegin + j];
-                const uint32_t r = nodeActive(g, n) ? innerRow(g, first, n) : kNone;
-                const uint32_t quanta = quantum(g.secondDistances, entryIndex(p, i, j));
-                if (r == kNone || quanta == kNoPathQuantum) continue;
+                const uint32_t quanta = rows[j] == kNone ? kNoPathQuantum : quantum(g.secondDistances, entryIndex(p, i, j));
+                table.vertexEntries[entryAt++] = uint16_t(quanta);
+                if (quanta == kNoPathQuantum) continue;
                 const uint16_t base = toSteps(float(quanta) * p.scale, g.hubLabelScale);
-                if (base != kNoStep) lowerStepsOn(g, v, innerRowData(g, first, r), K, base);
+                if (base != kNoStep) lowerStepsOn(g, v, innerRowData(g, first, rows[j]), K, base);
             }
             for (uint32_t kk = 0; kk < padded; ++kk)
                 distances[kk] = kk < K && v[kk] != kNoStep ? float(v[kk]) * g.hubLabelScale : __builtin_inff();
@@ -1325,18 +1328,6 @@ void fillEndpointTable(const vg_graph& g, vg_endpoint_table& table) {
     }
     table.vertexRowBegin[g.secondCount] = rowAt;
     table.patchColumnBegin[g.secondCount] = columnAt;
-    uint64_t entryAt = 0;
-    for (uint32_t q = 0; q < g.secondCount; ++q) {
-        const Patch& p = g.second[q];
-        table.vertexEntryBegin[q] = entryAt;
-        for (uint32_t i = p.nodeCount; i < p.slotCount; ++i)
-            for (uint32_t j = 0; j < p.nodeCount; ++j) {
-                const uint32_t n = g.slots[p.slotBegin + j];
-                const bool reached = nodeActive(g, n) && innerRow(g, p.parent, n) != kNone;
-                table.vertexEntries[entryAt++] =
-                    uint16_t(reached ? quantum(g.secondDistances, entryIndex(p, i, j)) : kNoPathQuantum);
-            }
-    }
     table.vertexEntryBegin[g.secondCount] = entryAt;
 }
 

@@ -22,6 +22,7 @@
 // drops after it was settled is simply queued again.
 #include "vg_fan.h"
 #include "vg_hub_labels.h"
+#include "vg_patch_pairs.h"
 #include "vg_point_to_point.h"
 #include "vg_query.h"
 #include "vg_lower_bound.h"
@@ -79,33 +80,7 @@ float search(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float 
     if (endpointComponent(g, s) != endpointComponent(g, t)) return inf;
 
     const uint32_t gen = beginQuery(ws);
-    float best = inf;
-    // Two points of one face: the straight segment.
-    if (!s.isVertex() && !t.isVertex() && s.face == t.face) {
-        best = distance3(s.position, t.position);
-        m.kind = Meeting::kSegment;
-    }
-    // Two points around one vertex: the exact local paths (vg_fan.h).
-    uint32_t fanVertex = kNone, fanWay = 0;
-    const float local = localPath(g, s, t, &fanVertex, &fanWay);
-    if (local < best) {
-        best = local;
-        m.kind = Meeting::kFan;
-        m.vertex = fanVertex;
-        m.way = fanWay;
-    }
-    // Two endpoints of one second-layer patch: the stored (or interpolated) entry is a path already.
-    forEachEndpointPatch(g, s, [&](uint32_t ps, uint32_t, auto&& fromS) {
-        forEachEndpointPatch(g, t, [&](uint32_t pt, uint32_t slotT, auto&&) {
-            if (ps != pt) return;
-            const float d = toEndpointInPatch(t, slotT, fromS);
-            if (d < best) {
-                best = d;
-                m.kind = Meeting::kPatch;
-                m.patch = ps;
-            }
-        });
-    });
+    float best = nearbyDistance(g, s, t, m);
 
     detailAround(g, s, ws.detail, gen);
     const bool oneFirstPatch = nearDetailed(g, t, ws.detail, gen);
@@ -206,6 +181,37 @@ float search(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float 
 
 }  // namespace
 
+float nearbyDistance(const vg_graph& g, const Endpoint& s, const Endpoint& t, Meeting& m) {
+    float best = __builtin_inff();
+    // Two points of one face: the straight segment.
+    if (!s.isVertex() && !t.isVertex() && s.face == t.face) {
+        best = distance3(s.position, t.position);
+        m.kind = Meeting::kSegment;
+    }
+    // Two points around one vertex: the exact local paths (vg_fan.h).
+    uint32_t fanVertex = kNone, fanWay = 0;
+    const float local = localPath(g, s, t, &fanVertex, &fanWay);
+    if (local < best) {
+        best = local;
+        m.kind = Meeting::kFan;
+        m.vertex = fanVertex;
+        m.way = fanWay;
+    }
+    // Two endpoints of one second-layer patch: the stored (or interpolated) entry is a path already.
+    forEachEndpointPatch(g, s, [&](uint32_t ps, uint32_t, auto&& fromS) {
+        forEachEndpointPatch(g, t, [&](uint32_t pt, uint32_t slotT, auto&&) {
+            if (ps != pt) return;
+            const float d = toEndpointInPatch(t, slotT, fromS);
+            if (d < best) {
+                best = d;
+                m.kind = Meeting::kPatch;
+                m.patch = ps;
+            }
+        });
+    });
+    return best;
+}
+
 float directedSearch(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float maxDistance, bool fromSecond) {
     return search(g, ws, s, t, maxDistance, VG_SEARCH_DIRECTED, fromSecond, nullptr, nullptr);
 }
@@ -214,7 +220,9 @@ float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, 
                    Meeting* how) {
     if (mode == VG_SEARCH_HUB_LABELS) {
         float labelled = 0.0f;
-        if (how == nullptr && s.isVertex() && t.isVertex() && hubDistance(g, ws, s.vertex, t.vertex, maxDistance, &labelled))
+        if (how == nullptr && s.isVertex() && t.isVertex() &&
+            (hubDistance(g, ws, s.vertex, t.vertex, maxDistance, &labelled) ||
+             patchPairDistance(g, ws, s.vertex, t.vertex, maxDistance, &labelled)))
             return labelled;
         mode = VG_SEARCH_DIRECTED;
     }

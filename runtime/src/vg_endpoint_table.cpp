@@ -6,6 +6,7 @@
 #include "vg_endpoint_table.h"
 #include "vg_huge_pages.h"
 #include "vg_hub_labels.h"
+#include "vg_inner_rows.h"
 #include "vg_layout.h"
 #include "vg_workspace.h"
 
@@ -33,15 +34,41 @@ vg_endpoint_table* layOut(const vg_graph& g, Layout& L) {
     uint64_t* entryBegin = L.take<uint64_t>(uint64_t(g.secondCount) + 1);
     uint16_t* vertexEntries = L.take<uint16_t>(entries);
     float* vertexLandmarks = L.take<float>(uint64_t(g.vertexCount) * g.landmarkCount);
+    uint64_t nodeDistanceCount = 0, largestMatrix = 0;
+    for (uint32_t f = 0; f < g.firstCount; ++f) {
+        const uint64_t R = g.hubInnerBegin[f + 1] - g.hubInnerBegin[f];
+        nodeDistanceCount += R * R;
+        largestMatrix = R * R > largestMatrix ? R * R : largestMatrix;
+    }
+    uint64_t* nodeDistanceBegin = L.take<uint64_t>(uint64_t(g.firstCount) + 1);
+    // (+2: the pair kernel reads a 32-bit word at each entry, vg_patch_pairs.cpp)
+    uint16_t* nodeDistances = L.take<uint16_t>(nodeDistanceCount + 2);
+    float* nodeDistanceScale = L.take<float>(g.firstCount);
+    uint64_t nodeSlotEnd = 0;
+    for (uint32_t q = 0; q < g.secondCount; ++q) {
+        const uint64_t end = uint64_t(g.second[q].slotBegin) + g.second[q].nodeCount;
+        nodeSlotEnd = end > nodeSlotEnd ? end : nodeSlotEnd;
+    }
+    uint32_t* nodeRank = L.take<uint32_t>(nodeSlotEnd);
     uint64_t largest = 0;
     for (uint32_t f = 0; f < g.firstCount; ++f) largest = g.first[f].slotCount > largest ? g.first[f].slotCount : largest;
     float* scratch = L.take<float>((largest + 8) * (uint64_t(g.landmarkCount) + 1));
     uint64_t nodes = 0;
     for (uint32_t q = 0; q < g.secondCount; ++q) nodes = g.second[q].nodeCount > nodes ? g.second[q].nodeCount : nodes;
     uint32_t* nodeRows = L.take<uint32_t>(nodes);
-    if (t != nullptr)
+    void* searchScratch = L.take<unsigned char>(innerRowsScratchSize());
+    float* nodeDistanceScratch = L.take<float>(largestMatrix);
+    uint32_t* rankScratch = L.take<uint32_t>(largestInnerRows(g));
+    if (t != nullptr) {
         *t = vg_endpoint_table{&g, rowBegin, vertexRows, columnBegin, patchColumns, entryBegin, vertexEntries, vertexLandmarks,
-                               scratch, nodeRows};
+                               nodeDistanceBegin, nodeDistances, nodeDistanceScale, nodeRank, scratch, nodeRows,
+                               searchScratch, nodeDistanceScratch, rankScratch};
+        nodeDistanceBegin[0] = 0;
+        for (uint32_t f = 0; f < g.firstCount; ++f) {
+            const uint64_t R = g.hubInnerBegin[f + 1] - g.hubInnerBegin[f];
+            nodeDistanceBegin[f + 1] = nodeDistanceBegin[f] + R * R;
+        }
+    }
     return t;
 }
 
@@ -52,6 +79,69 @@ size_t tableBytes(const vg_graph& g) {
 }
 
 }  // namespace
+
+namespace vg {
+
+uint32_t largestInnerRows(const vg_graph& g) {
+    uint32_t largest = 0;
+    for (uint32_t f = 0; g.hubTreeCount && f < g.firstCount; ++f) {
+        const uint32_t R = g.hubInnerBegin[f + 1] - g.hubInnerBegin[f];
+        largest = R > largest ? R : largest;
+    }
+    return largest;
+}
+
+// Places first-layer patch f's inner rows in the order its second-layer patches first
+// hold them (table.rankScratch by inner row, table.nodeRank by node slot).
+void rankNodes(const vg_graph& g, uint32_t f, vg_endpoint_table& table) {
+    const uint32_t* rowNode = g.hubInnerNode + g.hubInnerBegin[f];
+    const uint32_t R = g.hubInnerBegin[f + 1] - g.hubInnerBegin[f];
+    uint32_t* rank = table.rankScratch;
+    for (uint32_t r = 0; r < R; ++r) rank[r] = kNone;
+    uint32_t next = 0;
+    for (uint32_t q = 0; q < g.secondCount; ++q) {
+        const Patch& p = g.second[q];
+        if (p.parent != f) continue;
+        for (uint32_t j = 0; j < p.nodeCount; ++j) {
+            const uint32_t n = g.slots[p.slotBegin + j];
+            const uint32_t r = nodeActive(g, n) ? sortedIndex(rowNode, R, n) : kNone;
+            if (r != kNone && rank[r] == kNone) rank[r] = next++;
+            table.nodeRank[p.slotBegin + j] = r == kNone ? kNone : rank[r];
+        }
+    }
+    for (uint32_t r = 0; r < R; ++r)
+        if (rank[r] == kNone) rank[r] = next++;  // a row no node slot holds (none in any blob seen)
+}
+
+vg_status fillNodeDistances(const vg_graph& g, vg_endpoint_table& table) {
+    constexpr uint32_t kTopStep = 65534, kNoPathStep = 65535;
+    for (uint32_t f = 0; f < g.firstCount; ++f) {
+        const uint64_t R = g.hubInnerBegin[f + 1] - g.hubInnerBegin[f];
+        rankNodes(g, f, table);
+        const uint32_t* rank = table.rankScratch;
+        float* d = table.nodeDistanceScratch;
+        const vg_status st = computeNodeDistances(g, f, g.avx2, table.searchScratch, d);
+        if (st != VG_OK) return st;
+        // The patch's own step, from its longest distance: a pair inside one first-layer
+        // patch is short, and steps of the labels' scale (which spans the whole mesh) would
+        // be a coarse share of it.
+        float longest = 0.0f;
+        for (uint64_t e = 0; e < R * R; ++e) longest = d[e] != __builtin_inff() && d[e] > longest ? d[e] : longest;
+        const float scale = longest > 0.0f ? longest / float(kTopStep) : 1.0f;
+        table.nodeDistanceScale[f] = scale;
+        uint16_t* out = table.nodeDistances + table.nodeDistanceBegin[f];
+        for (uint64_t a = 0; a < R; ++a)
+            for (uint64_t b = 0; b < R; ++b) {
+                const float x = d[a * R + b];
+                const float steps = __builtin_floorf(x / scale + 0.5f);
+                out[uint64_t(rank[a]) * R + rank[b]] =
+                    x == __builtin_inff() ? uint16_t(kNoPathStep) : uint16_t(steps < float(kTopStep) ? steps : float(kTopStep));
+            }
+    }
+    return VG_OK;
+}
+
+}  // namespace vg
 
 extern "C" size_t vg_endpoint_table_size(const vg_graph* graph) {
     if (graph == nullptr || graph->hubTreeCount == 0) return 0;
@@ -74,6 +164,8 @@ extern "C" vg_status vg_endpoint_table_build(const vg_graph* graph, void* memory
     Layout L{base, kAlign};
     vg_endpoint_table* table = layOut(*graph, L);
     fillEndpointTable(*graph, *table);
+    const vg_status st = fillNodeDistances(*graph, *table);
+    if (st != VG_OK) return st;
     *out_table = table;
     return VG_OK;
 }

@@ -29,11 +29,25 @@ struct vg_endpoint_table {
     // its landmark distances in the labels' metric as a label query takes them through
     // its patch's first-layer nodes (landmarksThroughSlots).
     float* vertexLandmarks;
+    // Per first-layer patch (firstCount + 1 offsets): the distances between its inner-row
+    // nodes over its own second-layer graph, R x R entries (R: its inner rows), in steps
+    // of the patch's nodeDistanceScale (65535: no path). Two endpoints inside one
+    // first-layer patch meet through them (vg_patch_pairs.cpp). The nodes are in their
+    // order of first appearance in the patch's second-layer patches, so that a
+    // second-layer patch's nodes lie together in a row: per node slot of a second-layer
+    // patch (slotBegin + j), nodeRank is its node's place there (kNone: merged away).
+    uint64_t* nodeDistanceBegin;
+    uint16_t* nodeDistances;
+    float* nodeDistanceScale;
+    uint32_t* nodeRank;
     // The build's scratch: one first-layer patch's hub landmark distances landmark by
     // landmark, then a vertex's distances to its slots (rows of the largest slot count,
     // padded to whole groups of 8, landmarkCount + 1 of them).
     float* scratch;
-    uint32_t* nodeRows;  // ... and one second-layer patch's nodes' inner rows (its largest node count)
+    uint32_t* nodeRows;  // ... and one second-layer patch's nodes' inner rows (its largest node count),
+    void* searchScratch;         // ... the node distances' search (computeNodeDistances)
+    float* nodeDistanceScratch;  // ... one first-layer patch's node distances as floats,
+    uint32_t* rankScratch;       // ... and its inner rows' places
 };
 
 namespace vg {
@@ -54,5 +68,12 @@ inline const uint16_t* endpointVertexEntries(const vg_graph& g, const vg_endpoin
     const uint32_t n = g.second[patch].nodeCount;
     return table.vertexEntries + table.vertexEntryBegin[patch] + uint64_t(g.vertexSlot[x] - n) * n;
 }
+
+// The largest inner-row count of a first-layer patch (0 without labels).
+uint32_t largestInnerRows(const vg_graph& g);
+
+// Fills the table's node distances (nodeDistanceBegin must be laid out): per first-layer
+// patch the searches of computeNodeDistances, rounded to steps of max / 65534.
+vg_status fillNodeDistances(const vg_graph& g, vg_endpoint_table& table);
 
 }  // namespace vg

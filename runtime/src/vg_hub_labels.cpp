@@ -1336,11 +1336,14 @@ uint32_t innerRow(const vg_graph& g, uint32_t first, uint32_t node) {
     return sortedIndex(g.hubInnerNode + begin, g.hubInnerBegin[first + 1] - begin, node);
 }
 
-bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance, float* out,
-                 bool prune, bool generalMeeting, bool meetEveryBlock, float* upperBound) {
-    if (g.hubTreeCount == 0 || s == t || g.vertexPatch[s] == kNone || g.vertexPatch[t] == kNone) return false;
-    Side a, b;
-    if (!sideOf(g, s, a) || !sideOf(g, t, b) || shareFirstPatch(g, a, b)) return false;
+namespace {
+
+// hubDistance once its endpoints' sides are known.
+// `beaten`: a distance another method already has (+inf: none), so that only label paths
+// below it matter: the reads are pruned as if the upper bound had come from it.
+bool labelDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, Side a, Side b, float maxDistance,
+                   float* out, bool prune, bool generalMeeting, bool meetEveryBlock, float* upperBound,
+                   float beaten = __builtin_inff()) {
     // One order for both directions, so that d(s, t) and d(t, s) are the same number: a
     // node on the source side, whose distances to its patch's exits are its own inner row,
     // rather than on the target side, where the meeting would take the rows of all its
@@ -1400,6 +1403,10 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
         upper = kUpperSlack * distanceOf(hubToHub(g, pathBounds, ws.hubBlocks, meetCount, hubS, hubT,
                                                   saturatingSum(baseS, baseT), meetEveryBlock));
     if (upper != __builtin_inff()) upper += scale + reach;
+    if (prune && beaten != __builtin_inff()) {
+        const float known = kUpperSlack * beaten + scale + reach;
+        upper = known < upper ? known : upper;
+    }
     if (upperBound) *upperBound = upper;
     if (bounded && g.hubBlockBounds != nullptr)
         blockCount = blocksWithin(g, pathBounds, ws.hubBlocks, blockCount, upper);
@@ -1474,6 +1481,34 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
     }
     *out = best <= maxDistance ? best : __builtin_inff();
     return true;
+}
+
+}  // namespace
+
+bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance, float* out,
+                 bool prune, bool generalMeeting, bool meetEveryBlock, float* upperBound) {
+    if (g.hubTreeCount == 0 || s == t || g.vertexPatch[s] == kNone || g.vertexPatch[t] == kNone) return false;
+    Side a, b;
+    if (!sideOf(g, s, a) || !sideOf(g, t, b) || shareFirstPatch(g, a, b)) return false;
+    return labelDistance(g, ws, s, t, a, b, maxDistance, out, prune, generalMeeting, meetEveryBlock, upperBound);
+}
+
+bool hubLeavingDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float beaten, float* out) {
+    if (g.hubTreeCount == 0 || s == t || g.vertexPatch[s] == kNone || g.vertexPatch[t] == kNone) return false;
+    Side a, b;
+    if (!sideOf(g, s, a) || !sideOf(g, t, b) || !shareFirstPatch(g, a, b) || (a.hub != kNone && b.hub != kNone))
+        return false;
+    return labelDistance(g, ws, s, t, a, b, __builtin_inff(), out, true, false, false, nullptr, beaten);
+}
+
+uint16_t hubBorderSteps(const vg_graph& g, vg_workspace& ws, uint32_t x) {
+    Side side;
+    if (g.hubTreeCount == 0 || g.vertexPatch[x] == kNone || !sideOf(g, x, side) || side.hub != kNone) return 0;
+    innerSteps(g, ws, x, side, ws.hubSlotSteps);
+    const uint32_t K = g.first[side.first].slotCount;
+    uint16_t least = kNoStep;
+    for (uint32_t k = 0; k < K; ++k) least = ws.hubSlotSteps[k] < least ? ws.hubSlotSteps[k] : least;
+    return least;
 }
 
 }  // namespace vg

@@ -27,6 +27,21 @@ bool hubDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, fl
                  bool prune = true, bool generalMeeting = false, bool meetEveryBlock = false,
                  float* upperBound = nullptr);
 
+// The same reads for s and t in one first-layer patch (or one of them a hub on its
+// border), which hubDistance refuses: the paths that leave the patch through its nodes
+// (a hub end's own node among them), not those that stay inside, which
+// patchPairDistance takes from the endpoint table and combines with these
+// (vg_patch_pairs.h). `beaten` is the distance inside the patch: the reads are pruned to
+// the paths that could be shorter, and *out is exact only below it (at or above it, some
+// length at least as long as the full reads' answer, or +inf). False, nothing done, for
+// any other pair (two hubs among them).
+bool hubLeavingDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float beaten, float* out);
+
+// Vertex x's fewest label steps to a first-layer node of its patch (every path that leaves
+// the patch is at least this long, up to the steps' rounding); 65535 when it reaches none,
+// 0 when the labels do not answer for x or x is a hub.
+uint16_t hubBorderSteps(const vg_graph& g, vg_workspace& ws, uint32_t x);
+
 // Vertex x's landmark distances as a label query takes them, in the labels' metric (a
 // hub's own, else through its first-layer patch's nodes), into out[landmarkCount], and
 // how far each may be off beyond the landmark steps' rounding; -1 when the labels do not

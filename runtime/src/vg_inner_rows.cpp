@@ -224,21 +224,22 @@ __attribute__((target("avx2"))) void relaxRowAvx2(Search& s, const uint8_t* pack
 }
 #endif
 
-// Patch f's inner table: its children, their slots' local nodes, then a search per block
-// of up to kLanes slots, written out in steps.
-vg_status patchRows(const vg_graph& g, uint32_t f, Search& s, bool avx2) {
-#if !VG_INNER_AVX2
-    (void)avx2;
-#endif
+// First-layer patch f's search graph: its children (second-layer patches), their node
+// slots' local nodes, and the local nodes themselves: f's inner rows, then each slot whose
+// node is merged away. VG_ERR_CORRUPT_CONTENT past the format's limits or for a slot node
+// that no inner row holds.
+struct PatchGraph {
+    uint32_t f;
+    const uint32_t* rowNode;  // the inner rows' nodes, increasing
+    uint32_t rows, nodes, childCount;
+};
+
+vg_status prepareGraph(const vg_graph& g, uint32_t f, Search& s, PatchGraph& pg) {
     const Patch& first = g.first[f];
     const uint32_t K = first.slotCount;
-    const uint32_t* rowNode = g.hubInnerNode + g.hubInnerBegin[f];
-    const uint32_t rows = g.hubInnerBegin[f + 1] - g.hubInnerBegin[f];
-    uint16_t* table = const_cast<uint16_t*>(g.hubInner) + g.hubInnerMatrixBegin[f];
-    // The blob stores zeros here: anything else is a corrupt blob, not something to overwrite.
-    for (uint64_t e = 0; e < uint64_t(rows) * K; ++e)
-        if (table[e] != 0) return VG_ERR_CORRUPT_CONTENT;
-
+    pg.f = f;
+    pg.rowNode = g.hubInnerNode + g.hubInnerBegin[f];
+    pg.rows = g.hubInnerBegin[f + 1] - g.hubInnerBegin[f];
     uint32_t childCount = 0, childNodes = 0;
     s.childBegin[0] = 0;
     for (uint32_t q = 0; q < g.secondCount; ++q) {
@@ -247,71 +248,99 @@ vg_status patchRows(const vg_graph& g, uint32_t f, Search& s, bool avx2) {
         if (childCount == kMaxChildren || p.nodeCount > kMaxChildNodes - childNodes) return VG_ERR_CORRUPT_CONTENT;
         s.children[childCount] = q;
         for (uint32_t j = 0; j < p.nodeCount; ++j)
-            s.slotLocal[childNodes + j] = sortedIndex(rowNode, rows, g.slots[p.slotBegin + j]);
+            s.slotLocal[childNodes + j] = sortedIndex(pg.rowNode, pg.rows, g.slots[p.slotBegin + j]);
         childNodes += p.nodeCount;
         s.childBegin[++childCount] = childNodes;
     }
-    // Local nodes: the inner rows, then each slot whose node is merged away. The blocks take
-    // the slots by hub number: a tree node's hubs follow its separator, so neighbours share
-    // a block, their lanes drop together and fewer nodes relax twice (igea: 879,479 nodes
-    // taken from the queue instead of 1,140,366 in slot order, for 763,785 node visits).
-    uint32_t nodes = rows;
-    if (rows > kMaxNodes) return VG_ERR_CORRUPT_CONTENT;
+    pg.childCount = childCount;
+    // The blocks take the slots by hub number: a tree node's hubs follow its separator, so
+    // neighbours share a block, their lanes drop together and fewer nodes relax twice (igea:
+    // 879,479 nodes taken from the queue instead of 1,140,366 in slot order, for 763,785
+    // node visits).
+    uint32_t nodes = pg.rows;
+    if (pg.rows > kMaxNodes) return VG_ERR_CORRUPT_CONTENT;
     for (uint32_t k = 0; k < K; ++k) {
         const uint32_t b = g.slots[first.slotBegin + k];
         const uint32_t hub = g.nodeHub[b];
         s.order[k] = (uint64_t(hub) << 32) | k;
         if (nodeActive(g, b)) {
-            s.sourceLocal[k] = sortedIndex(rowNode, rows, b);
+            s.sourceLocal[k] = sortedIndex(pg.rowNode, pg.rows, b);
             if (s.sourceLocal[k] == kNone) return VG_ERR_CORRUPT_CONTENT;
             continue;
         }
         if (nodes == kMaxNodes) return VG_ERR_CORRUPT_CONTENT;
         s.sourceLocal[k] = nodes;
-        s.extraNode[nodes++ - rows] = b;
+        s.extraNode[nodes++ - pg.rows] = b;
     }
+    pg.nodes = nodes;
     sortKeys(s.order, K);
+    return VG_OK;
+}
 
+// One search over pg's graph from `count` (at most kLanes) local nodes, lane i from
+// sources[i]: s.dist holds the least path sums when it returns.
+void searchFrom(const vg_graph& g, const PatchGraph& pg, Search& s, const uint32_t* sources, uint32_t count, bool avx2) {
+#if !VG_INNER_AVX2
+    (void)avx2;
+#endif
     double source[kLanes];
-    uint32_t column[kLanes];
+    for (uint64_t i = 0; i < uint64_t(pg.nodes) * kLanes; ++i) s.dist[i] = kInf;
+    for (uint32_t n = 0; n < pg.nodes; ++n) {
+        s.pending[n] = 0;
+        s.heapAt[n] = kNone;
+    }
+    s.heapSize = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+        const uint32_t local = sources[i];
+        s.dist[uint64_t(local) * kLanes + i] = 0.0;
+        s.pending[local] = uint16_t(s.pending[local] | (1u << i));
+        queue(s, local, 0.0);
+    }
+    while (s.heapSize > 0) {
+        const uint32_t u = pop(s);
+        const uint32_t relax = s.pending[u];
+        s.pending[u] = 0;
+        const double* du = s.dist + uint64_t(u) * kLanes;
+        for (uint32_t i = 0; i < kLanes; ++i) source[i] = (relax >> i) & 1u ? du[i] : kInf;
+        const uint32_t node = u < pg.rows ? pg.rowNode[u] : s.extraNode[u - pg.rows];
+        for (uint32_t m = g.nodeSecondBegin[node]; m < g.nodeSecondBegin[node + 1]; ++m) {
+            const Membership& ms = g.nodeSecond[m];
+            const Patch& p = g.second[ms.patch];
+            if (p.parent != pg.f) continue;
+            const uint32_t c = sortedIndex(s.children, pg.childCount, ms.patch);
+            const uint32_t* to = s.slotLocal + s.childBegin[c];
+            const uint64_t row = nodeRowStart(p, ms.slot);
+#if VG_INNER_AVX2
+            if (avx2) {  // vg_open has asked the CPU
+                relaxRowAvx2(s, g.secondDistances, row, p.nodeCount, ms.slot, double(p.scale), to, source);
+                continue;
+            }
+#endif
+            relaxRowScalar(s, g.secondDistances, row, p.nodeCount, ms.slot, double(p.scale), to, source);
+        }
+    }
+}
+
+// Patch f's inner table: a search per block of up to kLanes slots, written out in steps.
+vg_status patchRows(const vg_graph& g, uint32_t f, Search& s, bool avx2) {
+    const uint32_t K = g.first[f].slotCount;
+    const uint32_t rows = g.hubInnerBegin[f + 1] - g.hubInnerBegin[f];
+    uint16_t* table = const_cast<uint16_t*>(g.hubInner) + g.hubInnerMatrixBegin[f];
+    // The blob stores zeros here: anything else is a corrupt blob, not something to overwrite.
+    for (uint64_t e = 0; e < uint64_t(rows) * K; ++e)
+        if (table[e] != 0) return VG_ERR_CORRUPT_CONTENT;
+    PatchGraph pg;
+    const vg_status st = prepareGraph(g, f, s, pg);
+    if (st != VG_OK) return st;
+
+    uint32_t column[kLanes], sources[kLanes];
     for (uint32_t k0 = 0; k0 < K; k0 += kLanes) {
         const uint32_t count = K - k0 < kLanes ? K - k0 : kLanes;
-        for (uint64_t i = 0; i < uint64_t(nodes) * kLanes; ++i) s.dist[i] = kInf;
-        for (uint32_t n = 0; n < nodes; ++n) {
-            s.pending[n] = 0;
-            s.heapAt[n] = kNone;
-        }
-        s.heapSize = 0;
         for (uint32_t i = 0; i < count; ++i) {
             column[i] = uint32_t(s.order[k0 + i]);
-            const uint32_t local = s.sourceLocal[column[i]];
-            s.dist[uint64_t(local) * kLanes + i] = 0.0;
-            s.pending[local] = uint16_t(s.pending[local] | (1u << i));
-            queue(s, local, 0.0);
+            sources[i] = s.sourceLocal[column[i]];
         }
-        while (s.heapSize > 0) {
-            const uint32_t u = pop(s);
-            const uint32_t relax = s.pending[u];
-            s.pending[u] = 0;
-            const double* du = s.dist + uint64_t(u) * kLanes;
-            for (uint32_t i = 0; i < kLanes; ++i) source[i] = (relax >> i) & 1u ? du[i] : kInf;
-            const uint32_t node = u < rows ? rowNode[u] : s.extraNode[u - rows];
-            for (uint32_t m = g.nodeSecondBegin[node]; m < g.nodeSecondBegin[node + 1]; ++m) {
-                const Membership& ms = g.nodeSecond[m];
-                const Patch& p = g.second[ms.patch];
-                if (p.parent != f) continue;
-                const uint32_t c = sortedIndex(s.children, childCount, ms.patch);
-                const uint32_t* to = s.slotLocal + s.childBegin[c];
-                const uint64_t row = nodeRowStart(p, ms.slot);
-#if VG_INNER_AVX2
-                if (avx2) {  // vg_open has asked the CPU
-                    relaxRowAvx2(s, g.secondDistances, row, p.nodeCount, ms.slot, double(p.scale), to, source);
-                    continue;
-                }
-#endif
-                relaxRowScalar(s, g.secondDistances, row, p.nodeCount, ms.slot, double(p.scale), to, source);
-            }
-        }
+        searchFrom(g, pg, s, sources, count, avx2);
         for (uint32_t r = 0; r < rows; ++r) {
             const double* d = s.dist + uint64_t(r) * kLanes;
 #if VG_INNER_AVX2
@@ -340,6 +369,23 @@ vg_status computeInnerRows(const vg_graph& g, bool avx2, void* scratch) {
     for (uint32_t f = 0; f < g.firstCount; ++f) {
         const vg_status st = patchRows(g, f, s, avx2);
         if (st != VG_OK) return st;
+    }
+    return VG_OK;
+}
+
+vg_status computeNodeDistances(const vg_graph& g, uint32_t f, bool avx2, void* scratch, float* out) {
+    Layout L{static_cast<unsigned char*>(scratch), kScratchAlign};
+    Search s = layOut(L);
+    PatchGraph pg;
+    const vg_status st = prepareGraph(g, f, s, pg);
+    if (st != VG_OK) return st;
+    uint32_t sources[kLanes];
+    for (uint32_t a0 = 0; a0 < pg.rows; a0 += kLanes) {
+        const uint32_t count = pg.rows - a0 < kLanes ? pg.rows - a0 : kLanes;
+        for (uint32_t i = 0; i < count; ++i) sources[i] = a0 + i;
+        searchFrom(g, pg, s, sources, count, avx2);
+        for (uint32_t b = 0; b < pg.rows; ++b)
+            for (uint32_t i = 0; i < count; ++i) out[uint64_t(a0 + i) * pg.rows + b] = float(s.dist[uint64_t(b) * kLanes + i]);
     }
     return VG_OK;
 }

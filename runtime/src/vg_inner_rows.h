@@ -20,4 +20,10 @@ size_t innerRowsScratchSize();
 // any of these).
 vg_status computeInnerRows(const vg_graph& g, bool avx2, void* scratch);
 
+// The distances between first-layer patch f's inner-row nodes over its second-layer node
+// graph, by the same search: out[a * R + b] from row node a to row node b (R: f's inner
+// rows; +inf: no path), each the double sum rounded to a float. The same scratch as
+// computeInnerRows; the same errors.
+vg_status computeNodeDistances(const vg_graph& g, uint32_t f, bool avx2, void* scratch, float* out);
+
 }  // namespace vg

@@ -32,6 +32,11 @@ struct Meeting {
 float pointToPoint(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float maxDistance,
                    vg_search_mode mode, Meeting* how = nullptr);
 
+// The answers that need no search (the meeting kinds kSame aside): the segment of two
+// points on one face, the local paths around one vertex, the entry of two endpoints of one
+// second-layer patch; the shortest of them (+inf: none), and how it was found in m.
+float nearbyDistance(const vg_graph& g, const Endpoint& s, const Endpoint& t, Meeting& m);
+
 // One directed search from the endpoint that comes first in the pair's one order (the
 // same for (s, t) and (t, s)), or with `fromSecond` from the other; no second search.
 float directedSearch(const vg_graph& g, vg_workspace& ws, Endpoint s, Endpoint t, float maxDistance, bool fromSecond);

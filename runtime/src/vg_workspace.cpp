@@ -8,6 +8,7 @@
 #include "vg_huge_pages.h"
 #include "vg_hub_labels.h"
 #include "vg_layout.h"
+#include "vg_patch_pairs.h"
 
 #include <string.h>
 
@@ -143,6 +144,13 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.hubPatchReach = L.take<float>(g.hubTreeCount ? g.secondCount : 0);
     o.hubInnerRowOfSlot = L.take<uint32_t>(g.hubTreeCount ? secondNodeSlotEnd(g) : 0);
     o.hubPatchSteps = L.take<uint16_t>(g.hubTreeCount ? vg::endpointColumnStride(uint32_t(largestSecondPatchNodes(g))) : 0);
+    o.pairListCapacity = g.hubTreeCount ? vg::patchPairListCapacity(g) : 0;
+    o.pairSlotCapacity = g.hubTreeCount ? vg::patchPairSlotCapacity(g) : 0;
+    o.pairRanks = L.take<uint32_t>(2 * uint64_t(o.pairListCapacity));
+    o.pairSeeds = L.take<float>(2 * uint64_t(o.pairListCapacity));
+    o.pairDistances = L.take<float>(2 * uint64_t(o.pairListCapacity));
+    o.pairIndexOfRank = L.take<uint32_t>(o.pairListCapacity);
+    o.pairSlotIndex = L.take<uint32_t>(2 * uint64_t(o.pairSlotCapacity));
     o.endpointTable = nullptr;
     o.graph = &g;
     o.generation = 0;
@@ -348,6 +356,7 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
                            ws->hubSlotPositions, ws->hubSlotLandmarks);
         fillHubPatchReach(*graph, ws->hubPatchReach);
         fillHubInnerRows(*graph, ws->hubInnerRowOfSlot);
+        for (uint32_t r = 0; r < ws->pairListCapacity; ++r) ws->pairIndexOfRank[r] = vg::kNone;
     }
     ws->searchMode = VG_SEARCH_HUB_LABELS;
     *out_workspace = ws;

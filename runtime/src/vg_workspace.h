@@ -270,6 +270,16 @@ struct vg_workspace {
                                    //     the patch's first-layer patch, kNone if none (filled at init)
     uint16_t* hubPatchSteps;       // ... the source's distance to each node of t's patch (with a table),
     const vg_endpoint_table* endpointTable;  // ... the table its label queries read, if any
+    // A pair inside one first-layer patch (vg_patch_pairs.cpp, with a table): two lists of
+    // pairListCapacity each, of an end's nodes (their places in the node distances, the
+    // end's entries and the other end's distances), per place its index in a list (kNone
+    // between queries), and two of pairSlotCapacity: per node slot of the end's patches.
+    uint32_t* pairRanks;
+    float* pairSeeds;
+    float* pairDistances;
+    uint32_t* pairIndexOfRank;
+    uint32_t* pairSlotIndex;
+    uint32_t pairListCapacity, pairSlotCapacity;
 };
 
 namespace vg {

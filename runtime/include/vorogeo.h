@@ -153,10 +153,13 @@ VG_API vg_status vg_workspace_init(const vg_graph* graph, void* memory, size_t m
  * patch from the inner rows of its patch's ~55 border nodes, and meets next to the target
  * through those rows again; the table holds the first per vertex and the rows per
  * second-layer patch column by column, so that a query reads one row per endpoint, the
- * columns of the exits that can matter, and takes its landmark distances as stored. The
- * answers are the same bits. igea (134K vertices): 132 MB, built in 0.35-0.8 s, label
- * queries p50 about -30% (-20% between other work's turns, BENCHMARKS.md); igea x16:
- * 2.2 GB. Built once per
+ * columns of the exits that can matter, and takes its landmark distances as stored: the
+ * same bits. It also holds each first-layer patch's node-to-node distances, through which
+ * two vertices inside one first-layer patch (which the labels alone do not answer) meet
+ * without a search: those answers differ from the searches' (closer to the exact
+ * distances on igea's golden pairs), and are still symmetric. igea (134K vertices):
+ * 204 MB, built in ~2 s, label queries p50 about -30% (-20% between other work's turns),
+ * pairs inside one patch ~32 us instead of ~40-60 (BENCHMARKS.md). Built once per
  * graph into caller memory, immutable: any number of workspaces and threads may read it.
  * It must outlive the workspaces that use it; vg_workspace_use_endpoint_table(ws, NULL)
  * detaches it. */
@@ -164,7 +167,9 @@ typedef struct vg_endpoint_table vg_endpoint_table;
 /* Bytes the table needs for this graph; 0 when the graph has no hub labels (or is NULL). */
 VG_API size_t vg_endpoint_table_size(const vg_graph* graph);
 /* Builds the table inside `memory` (any alignment, at least vg_endpoint_table_size bytes);
- * one thread. VG_ERR_NO_HUB_LABELS for a graph without labels. */
+ * one thread. VG_ERR_NO_HUB_LABELS for a graph without labels; VG_ERR_CORRUPT_CONTENT for
+ * a first-layer patch past the format's limits (which vg_open checks only for blobs whose
+ * inner rows it computes). */
 VG_API vg_status vg_endpoint_table_build(const vg_graph* graph, void* memory, size_t memory_size,
                                          const vg_endpoint_table** out_table);
 /* Lets the workspace's label queries read `table` (NULL: stop reading one);

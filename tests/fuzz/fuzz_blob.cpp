@@ -146,6 +146,38 @@ void queryEverything(const vg_graph* g, const uint8_t* data, size_t size) {
     if (V && (std::memcmp(sliced.data(), field.data(), V * sizeof(float)) != 0 || slicedLabels != labels)) std::abort();
 }
 
+// A blob with hub labels: its endpoint table, built into memory at an odd address, then
+// label queries that read it (pairs inside one first-layer patch meet through its node
+// distances). Steered by its own reader, so that the queries above stay as recorded.
+void queryWithTable(const vg_graph* g, const uint8_t* data, size_t size) {
+    const size_t tableBytes = vg_endpoint_table_size(g);
+    if (tableBytes == 0 || tableBytes > kMaxOpenMemory) return;
+    std::vector<unsigned char> tableMemory(tableBytes + 1);
+    const vg_endpoint_table* table = nullptr;
+    const vg_status built = vg_endpoint_table_build(g, tableMemory.data() + 1, tableBytes, &table);
+    check(built);
+    if (built != VG_OK) {
+        if (table != nullptr) std::abort();
+        return;
+    }
+    const size_t wsBytes = vg_workspace_size(g);
+    std::vector<unsigned char> wsMemory(wsBytes);
+    vg_workspace* ws = nullptr;
+    if (vg_workspace_init(g, wsMemory.data(), wsBytes, &ws) != VG_OK) std::abort();
+    if (vg_workspace_use_endpoint_table(ws, table) != VG_OK) std::abort();
+    const uint32_t V = vg_vertex_count(g);
+    Steer steer{data, size};
+    float d = 0, back = 0;
+    for (int i = 0; i < 8; ++i) {
+        const uint32_t a = vertex(steer, V), b = vertex(steer, V);
+        const vg_status st = vg_distance(g, ws, a, b, &d);
+        check(st);
+        if (st == VG_OK && (std::isnan(d) || d < 0)) std::abort();
+        check(vg_distance(g, ws, b, a, &back));
+        check(vg_distance_within(g, ws, a, b, bound(steer), &d));
+    }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -180,5 +212,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         return 0;
     }
     queryEverything(g, data, size);
+    queryWithTable(g, data, size);
     return 0;
 }

@@ -19,7 +19,7 @@ namespace {
 
 const char* kUsage =
     "usage: vorogeo eval MESH BLOB [--golden PAIRS.csv | --pairs N [--seed S]] [--triples N]\n"
-    "                   [--search labels|directed|bidirectional] [--json]\n"
+    "                   [--search labels|directed|bidirectional] [--no-endpoint-table] [--json]\n"
     "  Accuracy of the runtime's point-to-point distance against exact geodesics: from a\n"
     "  golden 'source,target,distance' file, or from the exact engine on N random pairs\n"
     "  (default 1000, drawn from N/100 sources). Reports mean, median, p99 and max relative\n"
@@ -28,7 +28,10 @@ const char* kUsage =
     "  one-to-all time (median over up to 20 sources of the pairs).\n"
     "  --search  the point-to-point mode (vg_workspace_set_search): labels (default: hub\n"
     "            labels where the blob has them, else directed), directed A*, or the\n"
-    "            thesis's bidirectional A*\n";
+    "            thesis's bidirectional A*\n"
+    "  --no-endpoint-table  labels without the runtime's endpoint table (by default the\n"
+    "            labels mode reads one, as vorogeo bench does: it answers pairs inside one\n"
+    "            first-layer patch from their patch's node distances)\n";
 
 // Random pairs, a hundred targets per source, with exact distances from the exact engine.
 std::vector<DistancePair> exactRandomPairs(const Mesh& mesh, size_t count, uint64_t seed) {
@@ -52,7 +55,7 @@ std::vector<DistancePair> exactRandomPairs(const Mesh& mesh, size_t count, uint6
 }  // namespace
 
 int runEval(int argc, char** argv) {
-    cli::Args args(argc, argv, {"--golden", "--pairs", "--seed", "--triples", "--search"}, {"--json", "--help", "--repair"});
+    cli::Args args(argc, argv, {"--golden", "--pairs", "--seed", "--triples", "--search"}, {"--json", "--help", "--repair", "--no-endpoint-table"});
     if (args.flag("--help")) {
         std::printf("%s", kUsage);
         return 0;
@@ -94,6 +97,9 @@ int runEval(int argc, char** argv) {
 
     RuntimeWorkspace ws(graph);
     ws.setSearch(search);
+    const bool withTable = search == VG_SEARCH_HUB_LABELS && !args.flag("--no-endpoint-table");
+    const EndpointTable table(withTable ? graph.graph() : nullptr);
+    ws.useTable(table);
     const AccuracyReport acc = measureAccuracy(ws, pairs);
     const MetricReport metric = checkMetric(ws, mesh.vertexCount(), size_t(triples), seed);
     // One-to-all from the first sources of the pairs (at most 20 distinct).
@@ -113,13 +119,13 @@ int runEval(int argc, char** argv) {
     const double bboxDiag = double(vg_bbox_diagonal(graph.graph()));
 
     if (args.flag("--json")) {
-        std::printf("{\"mesh\":\"%s\",\"search\":\"%s\",\"vertices\":%u,\"blob_bytes\":%zu,\"open_ms\":%.3f,\"pairs\":%zu,"
+        std::printf("{\"mesh\":\"%s\",\"search\":\"%s\",\"endpoint_table\":%s,\"vertices\":%u,\"blob_bytes\":%zu,\"open_ms\":%.3f,\"pairs\":%zu,"
                     "\"mean_rel_error\":%.6e,\"median_rel_error\":%.6e,\"p99_rel_error\":%.6e,\"max_rel_error\":%.6e,"
                     "\"pairs_over_1pct\":%zu,\"infinite_mismatches\":%zu,"
                     "\"sssd_p50_us\":%.2f,\"sssd_p90_us\":%.2f,\"sssd_p99_us\":%.2f,\"msad_p50_ms\":%.3f,"
                     "\"symmetry_pairs\":%zu,\"symmetry_violations\":%zu,\"max_symmetry_rel\":%.3e,"
                     "\"triples\":%zu,\"triangle_violations\":%zu,\"max_triangle_excess\":%.3e}\n",
-                    args.positional()[0].c_str(), searchName.c_str(), mesh.vertexCount(), graph.blobBytes(),
+                    args.positional()[0].c_str(), searchName.c_str(), table.get() ? "true" : "false", mesh.vertexCount(), graph.blobBytes(),
                     graph.openSeconds() * 1e3, acc.pairs, acc.meanRel, acc.medianRel, acc.p99Rel, acc.maxRel, acc.overOnePercent,
                     acc.infiniteMismatches, acc.p50Us, acc.p90Us, acc.p99Us, msadP50, metric.symmetryPairs,
                     metric.symmetryViolations, metric.maxSymmetryRel, metric.triples, metric.triangleViolations,
@@ -129,6 +135,9 @@ int runEval(int argc, char** argv) {
     std::printf("%s: %u vertices, blob %zu bytes (%.1f bytes/vertex), opened in %.2f ms\n",
                 args.positional()[0].c_str(), mesh.vertexCount(), graph.blobBytes(),
                 double(graph.blobBytes()) / mesh.vertexCount(), graph.openSeconds() * 1e3);
+    if (table.get())
+        std::printf("labels with the endpoint table (%.1f MB, built in %.0f ms)\n", double(table.bytes()) / 1e6,
+                    table.buildSeconds() * 1e3);
     std::printf("pairs %zu: relative error mean %.4f%%, median %.4f%%, p99 %.4f%%, max %.4f%%; %zu pairs over 1%%\n",
                 acc.pairs, acc.meanRel * 100, acc.medianRel * 100, acc.p99Rel * 100, acc.maxRel * 100,
                 acc.overOnePercent);

@@ -58,7 +58,7 @@ vg_endpoint_table* layOut(const vg_graph& g, Layout& L) {
     uint32_t* nodeRows = L.take<uint32_t>(nodes);
     void* searchScratch = L.take<unsigned char>(innerRowsScratchSize());
     float* nodeDistanceScratch = L.take<float>(largestMatrix);
-    uint32_t* rankScratch = L.take<uint32_t>(largestInnerRows(g));
+    uint32_t* rankScratch = L.take<uint32_t>(2 * uint64_t(largestInnerRows(g)));  // places, then their inverse
     if (t != nullptr) {
         *t = vg_endpoint_table{&g, rowBegin, vertexRows, columnBegin, patchColumns, entryBegin, vertexEntries, vertexLandmarks,
                                nodeDistanceBegin, nodeDistances, nodeDistanceScale, nodeRank, scratch, nodeRows,
@@ -119,8 +119,10 @@ vg_status fillNodeDistances(const vg_graph& g, vg_endpoint_table& table) {
         const uint64_t R = g.hubInnerBegin[f + 1] - g.hubInnerBegin[f];
         rankNodes(g, f, table);
         const uint32_t* rank = table.rankScratch;
+        uint32_t* order = table.rankScratch + R;  // the inner rows by place: a patch's nodes together
+        for (uint32_t r = 0; r < R; ++r) order[rank[r]] = r;
         float* d = table.nodeDistanceScratch;
-        const vg_status st = computeNodeDistances(g, f, g.avx2, table.searchScratch, d);
+        const vg_status st = computeNodeDistances(g, f, g.avx2, table.searchScratch, order, d);
         if (st != VG_OK) return st;
         // The patch's own step, from its longest distance: a pair inside one first-layer
         // patch is short, and steps of the labels' scale (which spans the whole mesh) would

@@ -47,7 +47,7 @@ struct vg_endpoint_table {
     uint32_t* nodeRows;  // ... and one second-layer patch's nodes' inner rows (its largest node count),
     void* searchScratch;         // ... the node distances' search (computeNodeDistances)
     float* nodeDistanceScratch;  // ... one first-layer patch's node distances as floats,
-    uint32_t* rankScratch;       // ... and its inner rows' places
+    uint32_t* rankScratch;       // ... and its inner rows' places, and the rows in that order
 };
 
 namespace vg {

@@ -373,7 +373,8 @@ vg_status computeInnerRows(const vg_graph& g, bool avx2, void* scratch) {
     return VG_OK;
 }
 
-vg_status computeNodeDistances(const vg_graph& g, uint32_t f, bool avx2, void* scratch, float* out) {
+vg_status computeNodeDistances(const vg_graph& g, uint32_t f, bool avx2, void* scratch, const uint32_t* order,
+                               float* out) {
     Layout L{static_cast<unsigned char*>(scratch), kScratchAlign};
     Search s = layOut(L);
     PatchGraph pg;
@@ -382,10 +383,10 @@ vg_status computeNodeDistances(const vg_graph& g, uint32_t f, bool avx2, void* s
     uint32_t sources[kLanes];
     for (uint32_t a0 = 0; a0 < pg.rows; a0 += kLanes) {
         const uint32_t count = pg.rows - a0 < kLanes ? pg.rows - a0 : kLanes;
-        for (uint32_t i = 0; i < count; ++i) sources[i] = a0 + i;
+        for (uint32_t i = 0; i < count; ++i) sources[i] = order[a0 + i];
         searchFrom(g, pg, s, sources, count, avx2);
         for (uint32_t b = 0; b < pg.rows; ++b)
-            for (uint32_t i = 0; i < count; ++i) out[uint64_t(a0 + i) * pg.rows + b] = float(s.dist[uint64_t(b) * kLanes + i]);
+            for (uint32_t i = 0; i < count; ++i) out[uint64_t(sources[i]) * pg.rows + b] = float(s.dist[uint64_t(b) * kLanes + i]);
     }
     return VG_OK;
 }

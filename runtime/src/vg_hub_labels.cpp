@@ -992,6 +992,14 @@ uint32_t exitCostsOn(const vg_graph& g, const vg_workspace& ws, uint32_t first, 
     return exitCosts(g, ws, first, v, other, cost);
 }
 
+// The smallest of first-layer patch `first`'s exit costs (exitCostsOn's; +inf: none).
+float leastCost(const vg_workspace& ws, uint32_t first, const float* cost) {
+    float least = __builtin_inff();
+    for (uint32_t c = 0; c < ws.hubSlotRecordBegin[first + 1] - ws.hubSlotRecordBegin[first]; ++c)
+        least = cost[c] < least ? cost[c] : least;
+    return least;
+}
+
 // The upper bound's hub-to-hub part: the labels' distance between hubs a and b (their best
 // sum over the hubs of the first `count` blocks, those of their tree nodes' common ancestor
 // and above), in steps, on top of `base`. A block is read only while the path through it
@@ -1390,9 +1398,18 @@ bool labelDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, 
         hubT = k == kNone ? kNone : g.nodeHub[g.slots[g.first[b.first].slotBegin + k]];
         baseT = k == kNone ? kNoStep : vT[k];
     }
+    const float reach = b.hub == kNone ? nodeEdgeReach(g, ws, t) : 0.0f;
+    // Beaten already where every exit on either side is bounded above it: a label path is
+    // at least its exits' costs, less what the meeting next to t may undercut (reach).
+    if (prune && beaten != __builtin_inff()) {
+        const float limit = kUpperSlack * beaten + scale + reach;
+        if ((a.hub == kNone && leastCost(ws, a.first, costS) > limit) || (b.hub == kNone && leastCost(ws, b.first, costT) > limit)) {
+            *out = __builtin_inff();
+            return true;
+        }
+    }
     // The upper bound: through the likeliest exits and the labels between their hubs.
     float upper = __builtin_inff();
-    const float reach = b.hub == kNone ? nodeEdgeReach(g, ws, t) : 0.0f;
     const bool bounded = prune && hubS != kNone && hubT != kNone;
     uint32_t meetCount = 0;
     const uint32_t meetNode = bounded ? commonAncestor(g, treeOfHub(g, hubS), treeOfHub(g, hubT)) : kNone;

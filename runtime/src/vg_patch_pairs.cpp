@@ -57,6 +57,13 @@ bool hubOnFirstPatch(const vg_graph& g, uint32_t v, uint32_t first) {
     return on;
 }
 
+// The longest node edge of x's patches (each patch's, filled at workspace init).
+float longestNodeEdge(const vg_graph& g, const vg_workspace& ws, uint32_t x) {
+    float reach = 0.0f;
+    forEachPatchOf(g, x, [&](uint32_t patch, uint32_t) { reach = ws.hubPatchReach[patch] > reach ? ws.hubPatchReach[patch] : reach; });
+    return reach;
+}
+
 // One end's patch nodes, each once: its place in the node distances, the end's entry to
 // it (the smallest over the end's patches, 0 at the end itself) and the other end's
 // distance to it; and per node slot of each of the end's patches its place in these lists.
@@ -289,14 +296,17 @@ bool patchPairDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t
     best = nearT < best ? nearT : best;
     best = nearS < best ? nearS : best;
     // The paths that leave the patch and come back are the labels' (hubLeavingDistance).
-    // Each reaches the patch's border from both ends first, so where that alone is longer
-    // than the best inside (by the crossings' slack and a margin for the steps' rounding)
-    // the labels are not read: they could not lower it.
+    // Each reaches the patch's border from both ends first, and the labels' meeting next to
+    // t undercuts such a node path by less than a node edge next to t (a crossing is at
+    // least its better node path less its edge); so where the border steps less that are
+    // longer than the best inside (with a margin for the steps' rounding), the labels are
+    // not read: they could not lower it.
     bool leave = hubEnd;
     if (!hubEnd) {
         const uint32_t steps = uint32_t(hubBorderSteps(g, ws, s)) + hubBorderSteps(g, ws, t);
-        const float border = (float(steps) - kBorderRoundingSteps) * g.hubLabelScale;
-        leave = !(best * kUnfoldSlack * kBorderMargin < border);
+        const float reachS = longestNodeEdge(g, ws, s), reachT = longestNodeEdge(g, ws, t);
+        const float border = (float(steps) - kBorderRoundingSteps) * g.hubLabelScale - (reachS > reachT ? reachS : reachT);
+        leave = !(best * kBorderMargin < border);
     }
     float leaving = __builtin_inff();
     if (leave && hubLeavingDistance(g, ws, s, t, best, &leaving)) best = leaving < best ? leaving : best;

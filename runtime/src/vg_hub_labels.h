@@ -14,7 +14,8 @@ namespace vg {
 
 // The distance between vertices s and t (+inf beyond maxDistance) into *out. False, with
 // *out untouched, when the blob has no labels or s and t share a first-layer patch (a
-// shortest path may stay inside it, which only the search sees). `prune` false reads
+// shortest path may stay inside it, which only the endpoint table's node distances,
+// vg_patch_pairs.h, or the search see). `prune` false reads
 // every label of both patches (the reference the tests compare the pruned reads with).
 // `generalMeeting` meets next to t through the search labels and node edge lists even
 // where t lies inside one second-layer patch, which otherwise takes slot-local arrays and

@@ -168,8 +168,9 @@ typedef struct vg_endpoint_table vg_endpoint_table;
 VG_API size_t vg_endpoint_table_size(const vg_graph* graph);
 /* Builds the table inside `memory` (any alignment, at least vg_endpoint_table_size bytes);
  * one thread. VG_ERR_NO_HUB_LABELS for a graph without labels; VG_ERR_CORRUPT_CONTENT for
- * a first-layer patch past the format's limits (which vg_open checks only for blobs whose
- * inner rows it computes). */
+ * labels whose inner rows miss a first-layer node (no baker writes such a blob). A
+ * first-layer patch too large for the node distances' fixed search (the limits a blob
+ * whose inner rows vg_open computes keeps) gets none: its pairs are searched. */
 VG_API vg_status vg_endpoint_table_build(const vg_graph* graph, void* memory, size_t memory_size,
                                          const vg_endpoint_table** out_table);
 /* Lets the workspace's label queries read `table` (NULL: stop reading one);

@@ -16,6 +16,13 @@ using namespace vg;
 
 constexpr size_t kAlign = 64;
 
+// The node distances' rows of first-layer patch f: its inner rows, or none where its
+// search would not fit the fixed scratch (a blob that stores its inner rows may have such
+// patches; their pairs are searched).
+uint64_t nodeDistanceRows(const vg_graph& g, uint32_t f) {
+    return searchFits(g, f) ? g.hubInnerBegin[f + 1] - g.hubInnerBegin[f] : 0;
+}
+
 // Carves the table's arrays from L (L.base null: only measures); the header first.
 vg_endpoint_table* layOut(const vg_graph& g, Layout& L) {
     vg_endpoint_table* t = L.take<vg_endpoint_table>(1);
@@ -36,7 +43,7 @@ vg_endpoint_table* layOut(const vg_graph& g, Layout& L) {
     float* vertexLandmarks = L.take<float>(uint64_t(g.vertexCount) * g.landmarkCount);
     uint64_t nodeDistanceCount = 0, largestMatrix = 0;
     for (uint32_t f = 0; f < g.firstCount; ++f) {
-        const uint64_t R = g.hubInnerBegin[f + 1] - g.hubInnerBegin[f];
+        const uint64_t R = nodeDistanceRows(g, f);
         nodeDistanceCount += R * R;
         largestMatrix = R * R > largestMatrix ? R * R : largestMatrix;
     }
@@ -65,7 +72,7 @@ vg_endpoint_table* layOut(const vg_graph& g, Layout& L) {
                                searchScratch, nodeDistanceScratch, rankScratch};
         nodeDistanceBegin[0] = 0;
         for (uint32_t f = 0; f < g.firstCount; ++f) {
-            const uint64_t R = g.hubInnerBegin[f + 1] - g.hubInnerBegin[f];
+            const uint64_t R = nodeDistanceRows(g, f);
             nodeDistanceBegin[f + 1] = nodeDistanceBegin[f] + R * R;
         }
     }
@@ -116,7 +123,10 @@ void rankNodes(const vg_graph& g, uint32_t f, vg_endpoint_table& table) {
 vg_status fillNodeDistances(const vg_graph& g, vg_endpoint_table& table) {
     constexpr uint32_t kTopStep = 65534, kNoPathStep = 65535;
     for (uint32_t f = 0; f < g.firstCount; ++f) {
-        const uint64_t R = g.hubInnerBegin[f + 1] - g.hubInnerBegin[f];
+        const uint64_t R = table.nodeDistanceBegin[f + 1] - table.nodeDistanceBegin[f] == 0 ? 0
+                           : g.hubInnerBegin[f + 1] - g.hubInnerBegin[f];
+        table.nodeDistanceScale[f] = 1.0f;
+        if (R == 0) continue;  // none kept (nodeDistanceRows)
         rankNodes(g, f, table);
         const uint32_t* rank = table.rankScratch;
         uint32_t* order = table.rankScratch + R;  // the inner rows by place: a patch's nodes together

@@ -373,6 +373,18 @@ vg_status computeInnerRows(const vg_graph& g, bool avx2, void* scratch) {
     return VG_OK;
 }
 
+bool searchFits(const vg_graph& g, uint32_t f) {
+    uint64_t children = 0, childNodes = 0;
+    for (uint32_t q = 0; q < g.secondCount; ++q)
+        if (g.second[q].parent == f) {
+            ++children;
+            childNodes += g.second[q].nodeCount;
+        }
+    uint64_t nodes = g.hubInnerBegin[f + 1] - g.hubInnerBegin[f];
+    for (uint32_t k = 0; k < g.first[f].slotCount; ++k) nodes += !nodeActive(g, g.slots[g.first[f].slotBegin + k]);
+    return children <= kMaxChildren && childNodes <= kMaxChildNodes && nodes <= kMaxNodes;
+}
+
 vg_status computeNodeDistances(const vg_graph& g, uint32_t f, bool avx2, void* scratch, const uint32_t* order,
                                float* out) {
     Layout L{static_cast<unsigned char*>(scratch), kScratchAlign};

@@ -20,6 +20,10 @@ size_t innerRowsScratchSize();
 // any of these).
 vg_status computeInnerRows(const vg_graph& g, bool avx2, void* scratch);
 
+// True when first-layer patch f's search keeps within the fixed scratch (the limits of
+// vorogeo_inner_rows.h, which a blob with its inner rows stored need not keep).
+bool searchFits(const vg_graph& g, uint32_t f);
+
 // The distances between first-layer patch f's inner-row nodes over its second-layer node
 // graph, by the same search: out[a * R + b] from row node a to row node b (R: f's inner
 // rows; +inf: no path), each the double sum rounded to a float. The searches take the

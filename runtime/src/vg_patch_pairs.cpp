@@ -267,6 +267,9 @@ bool patchPairDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t
         if (g.vertexPatch[t] == kNone || !isHub(g, t) || !hubOnFirstPatch(g, t, first)) return false;
         hubEnd = true;
     }
+    // A patch whose node distances the table does not keep (too large for their search).
+    const uint64_t rows = g.hubInnerBegin[first + 1] - g.hubInnerBegin[first];
+    if (rows > 0 && table->nodeDistanceBegin[first + 1] == table->nodeDistanceBegin[first]) return false;
     float best = __builtin_inff();
     // One order for both directions, so that d(s, t) and d(t, s) are the same number.
     if (t < s) {
@@ -279,7 +282,6 @@ bool patchPairDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t
     EndNodes T{ws.pairRanks + lists, ws.pairSeeds + lists, ws.pairDistances + lists, ws.pairIndexOfRank,
                ws.pairSlotIndex + slots, {}, {}, 0, 0};
     if (!listEndNodes(g, *table, s, first, slots, S) || !listEndNodes(g, *table, t, first, slots, T)) return false;
-    const uint64_t rows = g.hubInnerBegin[first + 1] - g.hubInnerBegin[first];
     const uint16_t* distances = table->nodeDistances + table->nodeDistanceBegin[first];
 #if VG_PAIRS_AVX2
     if (g.avx2)

@@ -29,6 +29,7 @@ constexpr double kInf = __builtin_inf();
 // The search's arrays in the scratch.
 struct Search {
     double* dist;             // kMaxNodes x kLanes
+    float* distF;             // the same in floats, for the node distances' searches
     double* key;              // per node: its queue key
     uint32_t* heap;           // binary heap of nodes
     uint32_t* heapAt;         // per node: its heap position, kNone when not queued
@@ -49,6 +50,7 @@ constexpr size_t kScratchAlign = 64;
 Search layOut(Layout& L) {
     Search s;
     s.dist = L.take<double>(uint64_t(kMaxNodes) * kLanes);
+    s.distF = L.take<float>(uint64_t(kMaxNodes) * kLanes);
     s.key = L.take<double>(kMaxNodes);
     s.heap = L.take<uint32_t>(kMaxNodes);
     s.heapAt = L.take<uint32_t>(kMaxNodes);
@@ -158,13 +160,19 @@ __attribute__((target("avx2"))) void writeStepsAvx2(const double* d, uint32_t co
 }
 #endif
 
+// The lanes' distances in T: doubles for the inner rows (the baker's numbers bit for bit),
+// floats for the node distances (half the vector work; they are rounded to 16-bit steps).
+inline double* laneDistances(Search& s, double) { return s.dist; }
+inline float* laneDistances(Search& s, float) { return s.distF; }
+
 // Lowers node `to`'s lanes to source + w where that is lower; queues it if any is.
-inline void lowerScalar(Search& s, const double* source, double w, uint32_t to) {
-    double* d = s.dist + uint64_t(to) * kLanes;
+template <class T>
+inline void lowerScalar(Search& s, const T* source, T w, uint32_t to) {
+    T* d = laneDistances(s, T()) + uint64_t(to) * kLanes;
     uint32_t lowered = 0;
-    double key = kInf;
+    T key = T(kInf);
     for (uint32_t i = 0; i < kLanes; ++i) {
-        const double c = source[i] + w;
+        const T c = source[i] + w;
         if (c < d[i]) {
             d[i] = c;
             lowered |= 1u << i;
@@ -173,17 +181,18 @@ inline void lowerScalar(Search& s, const double* source, double w, uint32_t to) 
     }
     if (lowered == 0) return;
     s.pending[to] = uint16_t(s.pending[to] | lowered);
-    queue(s, to, key);
+    queue(s, to, double(key));
 }
 
 // Relaxes one matrix row (`n` packed 12-bit quanta from index `row`, column `self` being
 // the node itself) from the lanes `source` (+inf in lanes that do not relax).
-void relaxRowScalar(Search& s, const uint8_t* packed, uint64_t row, uint32_t n, uint32_t self, double scale,
-                    const uint32_t* to, const double* source) {
+template <class T>
+void relaxRowScalar(Search& s, const uint8_t* packed, uint64_t row, uint32_t n, uint32_t self, T scale,
+                    const uint32_t* to, const T* source) {
     for (uint32_t j = 0; j < n; ++j) {
         const uint32_t q = quantum(packed, row + j);
         if (j == self || q == kNoPathQuantum || to[j] == kNone) continue;
-        lowerScalar(s, source, double(q) * scale, to[j]);
+        lowerScalar(s, source, T(q) * scale, to[j]);
     }
 }
 
@@ -220,6 +229,33 @@ __attribute__((target("avx2"))) void relaxRowAvx2(Search& s, const uint8_t* pack
         const double key = _mm_cvtsd_f64(_mm_min_sd(half, _mm_unpackhi_pd(half, half)));
         s.pending[to[j]] = uint16_t(s.pending[to[j]] | lowered);
         queue(s, to[j], key);
+    }
+}
+
+// The float lanes: eight per instruction.
+__attribute__((target("avx2"))) void relaxRowAvx2(Search& s, const uint8_t* packed, uint64_t row, uint32_t n,
+                                                  uint32_t self, float scale, const uint32_t* to,
+                                                  const float* source) {
+    const __m256 s0 = _mm256_loadu_ps(source), s1 = _mm256_loadu_ps(source + 8);
+    const __m256 inf = _mm256_set1_ps(__builtin_inff());
+    for (uint32_t j = 0; j < n; ++j) {
+        const uint32_t q = quantum(packed, row + j);
+        if (j == self || q == kNoPathQuantum || to[j] == kNone) continue;
+        const __m256 w = _mm256_set1_ps(float(q) * scale);
+        float* d = s.distF + uint64_t(to[j]) * kLanes;
+        const __m256 c0 = _mm256_add_ps(s0, w), c1 = _mm256_add_ps(s1, w);
+        const __m256 d0 = _mm256_loadu_ps(d), d1 = _mm256_loadu_ps(d + 8);
+        const __m256 m0 = _mm256_cmp_ps(c0, d0, _CMP_LT_OQ), m1 = _mm256_cmp_ps(c1, d1, _CMP_LT_OQ);
+        const uint32_t lowered = uint32_t(_mm256_movemask_ps(m0)) | (uint32_t(_mm256_movemask_ps(m1)) << 8);
+        if (lowered == 0) continue;
+        _mm256_storeu_ps(d, _mm256_blendv_ps(d0, c0, m0));
+        _mm256_storeu_ps(d + 8, _mm256_blendv_ps(d1, c1, m1));
+        const __m256 k = _mm256_min_ps(_mm256_blendv_ps(inf, c0, m0), _mm256_blendv_ps(inf, c1, m1));
+        const __m128 half = _mm_min_ps(_mm256_castps256_ps128(k), _mm256_extractf128_ps(k, 1));
+        const __m128 quarter = _mm_min_ps(half, _mm_movehl_ps(half, half));
+        const float key = _mm_cvtss_f32(_mm_min_ss(quarter, _mm_shuffle_ps(quarter, quarter, 1)));
+        s.pending[to[j]] = uint16_t(s.pending[to[j]] | lowered);
+        queue(s, to[j], double(key));
     }
 }
 #endif
@@ -278,13 +314,16 @@ vg_status prepareGraph(const vg_graph& g, uint32_t f, Search& s, PatchGraph& pg)
 }
 
 // One search over pg's graph from `count` (at most kLanes) local nodes, lane i from
-// sources[i]: s.dist holds the least path sums when it returns.
+// sources[i]: the lanes' distances (laneDistances) hold the least path sums in T when it
+// returns.
+template <class T>
 void searchFrom(const vg_graph& g, const PatchGraph& pg, Search& s, const uint32_t* sources, uint32_t count, bool avx2) {
 #if !VG_INNER_AVX2
     (void)avx2;
 #endif
-    double source[kLanes];
-    for (uint64_t i = 0; i < uint64_t(pg.nodes) * kLanes; ++i) s.dist[i] = kInf;
+    T source[kLanes];
+    T* dist = laneDistances(s, T());
+    for (uint64_t i = 0; i < uint64_t(pg.nodes) * kLanes; ++i) dist[i] = T(kInf);
     for (uint32_t n = 0; n < pg.nodes; ++n) {
         s.pending[n] = 0;
         s.heapAt[n] = kNone;
@@ -292,7 +331,7 @@ void searchFrom(const vg_graph& g, const PatchGraph& pg, Search& s, const uint32
     s.heapSize = 0;
     for (uint32_t i = 0; i < count; ++i) {
         const uint32_t local = sources[i];
-        s.dist[uint64_t(local) * kLanes + i] = 0.0;
+        dist[uint64_t(local) * kLanes + i] = T(0);
         s.pending[local] = uint16_t(s.pending[local] | (1u << i));
         queue(s, local, 0.0);
     }
@@ -300,8 +339,8 @@ void searchFrom(const vg_graph& g, const PatchGraph& pg, Search& s, const uint32
         const uint32_t u = pop(s);
         const uint32_t relax = s.pending[u];
         s.pending[u] = 0;
-        const double* du = s.dist + uint64_t(u) * kLanes;
-        for (uint32_t i = 0; i < kLanes; ++i) source[i] = (relax >> i) & 1u ? du[i] : kInf;
+        const T* du = dist + uint64_t(u) * kLanes;
+        for (uint32_t i = 0; i < kLanes; ++i) source[i] = (relax >> i) & 1u ? du[i] : T(kInf);
         const uint32_t node = u < pg.rows ? pg.rowNode[u] : s.extraNode[u - pg.rows];
         for (uint32_t m = g.nodeSecondBegin[node]; m < g.nodeSecondBegin[node + 1]; ++m) {
             const Membership& ms = g.nodeSecond[m];
@@ -312,11 +351,11 @@ void searchFrom(const vg_graph& g, const PatchGraph& pg, Search& s, const uint32
             const uint64_t row = nodeRowStart(p, ms.slot);
 #if VG_INNER_AVX2
             if (avx2) {  // vg_open has asked the CPU
-                relaxRowAvx2(s, g.secondDistances, row, p.nodeCount, ms.slot, double(p.scale), to, source);
+                relaxRowAvx2(s, g.secondDistances, row, p.nodeCount, ms.slot, T(p.scale), to, source);
                 continue;
             }
 #endif
-            relaxRowScalar(s, g.secondDistances, row, p.nodeCount, ms.slot, double(p.scale), to, source);
+            relaxRowScalar(s, g.secondDistances, row, p.nodeCount, ms.slot, T(p.scale), to, source);
         }
     }
 }
@@ -340,7 +379,7 @@ vg_status patchRows(const vg_graph& g, uint32_t f, Search& s, bool avx2) {
             column[i] = uint32_t(s.order[k0 + i]);
             sources[i] = s.sourceLocal[column[i]];
         }
-        searchFrom(g, pg, s, sources, count, avx2);
+        searchFrom<double>(g, pg, s, sources, count, avx2);
         for (uint32_t r = 0; r < rows; ++r) {
             const double* d = s.dist + uint64_t(r) * kLanes;
 #if VG_INNER_AVX2
@@ -396,9 +435,9 @@ vg_status computeNodeDistances(const vg_graph& g, uint32_t f, bool avx2, void* s
     for (uint32_t a0 = 0; a0 < pg.rows; a0 += kLanes) {
         const uint32_t count = pg.rows - a0 < kLanes ? pg.rows - a0 : kLanes;
         for (uint32_t i = 0; i < count; ++i) sources[i] = order[a0 + i];
-        searchFrom(g, pg, s, sources, count, avx2);
+        searchFrom<float>(g, pg, s, sources, count, avx2);
         for (uint32_t b = 0; b < pg.rows; ++b)
-            for (uint32_t i = 0; i < count; ++i) out[uint64_t(sources[i]) * pg.rows + b] = float(s.dist[uint64_t(b) * kLanes + i]);
+            for (uint32_t i = 0; i < count; ++i) out[uint64_t(sources[i]) * pg.rows + b] = s.distF[uint64_t(b) * kLanes + i];
     }
     return VG_OK;
 }

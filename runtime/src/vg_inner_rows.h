@@ -26,7 +26,8 @@ bool searchFits(const vg_graph& g, uint32_t f);
 
 // The distances between first-layer patch f's inner-row nodes over its second-layer node
 // graph, by the same search: out[a * R + b] from row node a to row node b (R: f's inner
-// rows; +inf: no path), each the double sum rounded to a float. The searches take the
+// rows; +inf: no path), summed in floats (they end as 16-bit steps of the patch's longest
+// distance, far coarser than a float's rounding). The searches take the
 // sources kLanes at a time in `order` (R inner rows): neighbours together drop their lanes
 // together. The same scratch as computeInnerRows; the same errors.
 vg_status computeNodeDistances(const vg_graph& g, uint32_t f, bool avx2, void* scratch, const uint32_t* order,

@@ -158,8 +158,9 @@ VG_API vg_status vg_workspace_init(const vg_graph* graph, void* memory, size_t m
  * two vertices inside one first-layer patch (which the labels alone do not answer) meet
  * without a search: those answers differ from the searches' (closer to the exact
  * distances on igea's golden pairs), and are still symmetric. igea (134K vertices):
- * 204 MB, built in ~2 s, label queries p50 about -30% (-20% between other work's turns),
- * pairs inside one patch ~32 us instead of ~40-60 (BENCHMARKS.md). Built once per
+ * 204 MB, built in ~1.6 s (x16: 3.8 GB, ~50 s), label queries p50 about -30% (-20%
+ * between other work's turns), pairs inside one patch ~27 us instead of ~40
+ * (BENCHMARKS.md). Built once per
  * graph into caller memory, immutable: any number of workspaces and threads may read it.
  * It must outlive the workspaces that use it; vg_workspace_use_endpoint_table(ws, NULL)
  * detaches it. */

@@ -57,12 +57,8 @@ vg_endpoint_table* layOut(const vg_graph& g, Layout& L) {
         nodeSlotEnd = end > nodeSlotEnd ? end : nodeSlotEnd;
     }
     uint32_t* nodeRank = L.take<uint32_t>(nodeSlotEnd);
-    uint64_t largest = 0;
-    for (uint32_t f = 0; f < g.firstCount; ++f) largest = g.first[f].slotCount > largest ? g.first[f].slotCount : largest;
-    float* scratch = L.take<float>((largest + 8) * (uint64_t(g.landmarkCount) + 1));
-    uint64_t nodes = 0;
-    for (uint32_t q = 0; q < g.secondCount; ++q) nodes = g.second[q].nodeCount > nodes ? g.second[q].nodeCount : nodes;
-    uint32_t* nodeRows = L.take<uint32_t>(nodes);
+    float* scratch = L.take<float>((largestFirstPatch(g) + 8) * (uint64_t(g.landmarkCount) + 1));
+    uint32_t* nodeRows = L.take<uint32_t>(largestSecondPatchNodes(g));
     void* searchScratch = L.take<unsigned char>(innerRowsScratchSize());
     float* nodeDistanceScratch = L.take<float>(largestMatrix);
     uint32_t* rankScratch = L.take<uint32_t>(2 * uint64_t(largestInnerRows(g)));  // places, then their inverse

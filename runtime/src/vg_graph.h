@@ -166,6 +166,19 @@ inline uint32_t patchEdgesEnd(const vg_graph& g, uint32_t i) {
 
 inline bool nodeActive(const vg_graph& g, uint32_t node) { return (g.nodeFlags[node] & kNodeMergedAway) == 0; }
 
+// The most slots of a first-layer patch, and the most nodes of a second-layer patch (what
+// per-patch scratch is sized by).
+inline uint64_t largestFirstPatch(const vg_graph& g) {
+    uint64_t most = 0;
+    for (uint32_t i = 0; i < g.firstCount; ++i) most = g.first[i].slotCount > most ? g.first[i].slotCount : most;
+    return most;
+}
+inline uint64_t largestSecondPatchNodes(const vg_graph& g) {
+    uint64_t most = 0;
+    for (uint32_t i = 0; i < g.secondCount; ++i) most = g.second[i].nodeCount > most ? g.second[i].nodeCount : most;
+    return most;
+}
+
 // Position of x among the `count` increasing ids at `ids` (bisection), kNone when absent.
 inline uint32_t sortedIndex(const uint32_t* ids, uint32_t count, uint32_t x) {
     uint32_t lo = 0, hi = count;

@@ -151,11 +151,15 @@ bool sideOf(const vg_graph& g, uint32_t v, Side& side) {
     return inside;
 }
 
+}  // namespace
+
 bool hubInPatch(const vg_graph& g, uint32_t node, uint32_t first) {
     for (uint32_t m = g.nodeFirstBegin[node]; m < g.nodeFirstBegin[node + 1]; ++m)
         if (g.nodeFirst[m].patch == first) return true;
     return false;
 }
+
+namespace {
 
 bool shareFirstPatch(const vg_graph& g, const Side& a, const Side& b) {
     if (a.hub == kNone && b.hub == kNone) return a.first == b.first;
@@ -882,8 +886,9 @@ uint32_t blocksWithin(const vg_graph& g, const PathBounds& bounds, HubBlockRef* 
     return kept;
 }
 
-// The longest node edge at the nodes of t's second-layer patches (filled per patch at
-// workspace init): the most an unfolded crossing next to t can undercut a node path.
+}  // namespace
+
+// (vg_hub_labels.h) The most an unfolded crossing next to t can undercut a node path.
 float nodeEdgeReach(const vg_graph& g, const vg_workspace& ws, uint32_t t) {
     float reach = 0.0f;
     forEachPatchOf(g, t, [&](uint32_t patch, uint32_t) {
@@ -891,6 +896,8 @@ float nodeEdgeReach(const vg_graph& g, const vg_workspace& ws, uint32_t t) {
     });
     return reach;
 }
+
+namespace {
 
 // cost[c]: a lower bound of the paths from the endpoint through its patch's c-th exit
 // candidate (a slot that is a hub, in hub order) to the other endpoint; +inf where the

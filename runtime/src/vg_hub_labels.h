@@ -66,6 +66,14 @@ uint32_t hubEndpointSteps(const vg_graph& g, vg_workspace& ws, uint32_t x, uint1
 // steps as innerSteps works them out, and every second-layer patch's columns.
 void fillEndpointTable(const vg_graph& g, vg_endpoint_table& table);
 
+// True when first-layer node `node` is a slot of first-layer patch `first`.
+bool hubInPatch(const vg_graph& g, uint32_t node, uint32_t first);
+
+// The longest node edge of vertex t's second-layer patches (the workspace's per-patch
+// figure, filled at init): how far an unfolded crossing next to t may undercut the better
+// of its two node paths.
+float nodeEdgeReach(const vg_graph& g, const vg_workspace& ws, uint32_t t);
+
 // Row of `node` among the inner rows of first-layer patch `first` (binary search of its
 // sorted node list), kNone if absent.
 uint32_t innerRow(const vg_graph& g, uint32_t first, uint32_t node);

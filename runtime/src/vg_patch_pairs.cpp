@@ -50,20 +50,6 @@ uint32_t enclosingFirstPatch(const vg_graph& g, uint32_t v) {
     return inside ? first : kNone;
 }
 
-// True when hub v lies on first-layer patch `first`.
-bool hubOnFirstPatch(const vg_graph& g, uint32_t v, uint32_t first) {
-    bool on = false;
-    forEachPatchOf(g, v, [&](uint32_t patch, uint32_t) { on |= g.second[patch].parent == first; });
-    return on;
-}
-
-// The longest node edge of x's patches (each patch's, filled at workspace init).
-float longestNodeEdge(const vg_graph& g, const vg_workspace& ws, uint32_t x) {
-    float reach = 0.0f;
-    forEachPatchOf(g, x, [&](uint32_t patch, uint32_t) { reach = ws.hubPatchReach[patch] > reach ? ws.hubPatchReach[patch] : reach; });
-    return reach;
-}
-
 // One end's patch nodes, each once: its place in the node distances, the end's entry to
 // it (the smallest over the end's patches, 0 at the end itself) and the other end's
 // distance to it; and per node slot of each of the end's patches its place in these lists.
@@ -247,11 +233,7 @@ float meetNear(const vg_graph& g, const EndNodes& near) {
 
 uint32_t patchPairListCapacity(const vg_graph& g) { return (largestInnerRows(g) + 7) & ~7u; }
 
-uint32_t patchPairSlotCapacity(const vg_graph& g) {
-    uint32_t largest = 0;
-    for (uint32_t q = 0; q < g.secondCount; ++q) largest = g.second[q].nodeCount > largest ? g.second[q].nodeCount : largest;
-    return kMaxSidePatches * largest;
-}
+uint32_t patchPairSlotCapacity(const vg_graph& g) { return kMaxSidePatches * uint32_t(largestSecondPatchNodes(g)); }
 
 bool patchPairDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t t, float maxDistance, float* out) {
     const vg_endpoint_table* table = ws.endpointTable;
@@ -261,10 +243,10 @@ bool patchPairDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t
     bool hubEnd = false;
     if (first == kNone) {
         first = enclosingFirstPatch(g, t);
-        if (first == kNone || g.vertexPatch[s] == kNone || !isHub(g, s) || !hubOnFirstPatch(g, s, first)) return false;
+        if (first == kNone || g.vertexPatch[s] == kNone || !isHub(g, s) || !hubInPatch(g, vertexNode(g, s), first)) return false;
         hubEnd = true;
     } else if (enclosingFirstPatch(g, t) != first) {
-        if (g.vertexPatch[t] == kNone || !isHub(g, t) || !hubOnFirstPatch(g, t, first)) return false;
+        if (g.vertexPatch[t] == kNone || !isHub(g, t) || !hubInPatch(g, vertexNode(g, t), first)) return false;
         hubEnd = true;
     }
     // A patch whose node distances the table does not keep (too large for their search).
@@ -306,7 +288,7 @@ bool patchPairDistance(const vg_graph& g, vg_workspace& ws, uint32_t s, uint32_t
     bool leave = hubEnd;
     if (!hubEnd) {
         const uint32_t steps = uint32_t(hubBorderSteps(g, ws, s)) + hubBorderSteps(g, ws, t);
-        const float reachS = longestNodeEdge(g, ws, s), reachT = longestNodeEdge(g, ws, t);
+        const float reachS = nodeEdgeReach(g, ws, s), reachT = nodeEdgeReach(g, ws, t);
         const float border = (float(steps) - kBorderRoundingSteps) * g.hubLabelScale - (reachS > reachT ? reachS : reachT);
         leave = !(best * kBorderMargin < border);
     }

@@ -47,20 +47,6 @@ uint64_t firstSlotCount(const vg_graph& g) {
     return n;
 }
 
-uint64_t largestFirstPatch(const vg_graph& g) {
-    uint64_t most = 0;
-    for (uint32_t i = 0; i < g.firstCount; ++i)
-        if (g.first[i].slotCount > most) most = g.first[i].slotCount;
-    return most;
-}
-
-uint64_t largestSecondPatchNodes(const vg_graph& g) {
-    uint64_t most = 0;
-    for (uint32_t i = 0; i < g.secondCount; ++i)
-        if (g.second[i].nodeCount > most) most = g.second[i].nodeCount;
-    return most;
-}
-
 // Blocks of kHubBlock hubs over every tree node (each node's hubs in whole blocks).
 uint64_t hubBlockCount(const vg_graph& g) {
     uint64_t n = 0;
@@ -117,15 +103,15 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.pathPortals = L.take<vg::Portal>(vg::maxPortals(g.faceCount));
     o.pathApexes = L.take<vg::Apex>(vg::maxPortals(g.faceCount) + 2);
     const uint64_t pathBlocks = g.hubTreeCount ? g.hubMaxPath / vg::kHubBlock + g.hubTreeCount : 0;
-    const uint64_t patchSlots = g.hubTreeCount ? largestFirstPatch(g) : 0;
+    const uint64_t patchSlots = g.hubTreeCount ? vg::largestFirstPatch(g) : 0;
     o.hubSteps = L.take<uint16_t>(pathBlocks * vg::kHubBlock);
     o.hubExitSteps = L.take<uint16_t>((patchSlots + 1) * vg::kHubBlock);
     o.hubExits = L.take<vg::HubExit>(2 * (patchSlots + 1));
     o.hubExitHubs = L.take<uint32_t>(2 * (patchSlots + 1));
     o.hubSubtreeEnd = L.take<uint32_t>(g.hubTreeCount);
-    o.hubSlotSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? largestFirstPatch(g) : 0) + 16);
-    o.hubTargetSlotSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? largestFirstPatch(g) : 0) + 16);
-    o.hubSlotCost = L.take<float>(2 * uint64_t(g.hubTreeCount ? largestFirstPatch(g) + vg::kRecordLanes : 0));
+    o.hubSlotSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? vg::largestFirstPatch(g) : 0) + 16);
+    o.hubTargetSlotSteps = L.take<uint16_t>(uint64_t(g.hubTreeCount ? vg::largestFirstPatch(g) : 0) + 16);
+    o.hubSlotCost = L.take<float>(2 * uint64_t(g.hubTreeCount ? vg::largestFirstPatch(g) + vg::kRecordLanes : 0));
     o.hubBlockBegin = L.take<uint32_t>(uint64_t(g.hubTreeCount) + 1);
     o.hubBlockSpheres = L.take<float>(g.hubBlockBounds ? 4 * hubBlockCount(g) : 0);
     o.hubBlockRanges = L.take<uint16_t>(g.hubBlockBounds ? vg::blockRangeStride(g.landmarkCount) * hubBlockCount(g) : 0);
@@ -143,7 +129,7 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.hubBlockRows = L.take<uint16_t>(vg::kRowBuffers * o.hubBlockRowsEach);
     o.hubPatchReach = L.take<float>(g.hubTreeCount ? g.secondCount : 0);
     o.hubInnerRowOfSlot = L.take<uint32_t>(g.hubTreeCount ? secondNodeSlotEnd(g) : 0);
-    o.hubPatchSteps = L.take<uint16_t>(g.hubTreeCount ? vg::endpointColumnStride(uint32_t(largestSecondPatchNodes(g))) : 0);
+    o.hubPatchSteps = L.take<uint16_t>(g.hubTreeCount ? vg::endpointColumnStride(uint32_t(vg::largestSecondPatchNodes(g))) : 0);
     o.pairListCapacity = g.hubTreeCount ? vg::patchPairListCapacity(g) : 0;
     o.pairSlotCapacity = g.hubTreeCount ? vg::patchPairSlotCapacity(g) : 0;
     o.pairRanks = L.take<uint32_t>(2 * uint64_t(o.pairListCapacity));

@@ -9,6 +9,7 @@
 #include "geodesic_exact.h"
 #include "geodesic_wavefront.h"
 #include "runtime_graph.h"
+#include "task_threads.h"
 #include "timing.h"
 #include "tool_mesh.h"
 
@@ -18,7 +19,7 @@ namespace {
 
 const char* kUsage =
     "usage: vorogeo bench MESH BLOB [--pairs N] [--sources M] [--dijkstra-pairs D] [--seed S] [--json]\n"
-    "                    [--runtime-only] [--turn T] [--no-endpoint-table]\n"
+    "                    [--runtime-only] [--turn T] [--no-endpoint-table] [--field-threads K]\n"
     "  Times, in one run on the same random vertices (1 thread):\n"
     "    runtime point-to-point on N pairs (default 1000; the workspace's default mode, hub\n"
     "    labels where the blob has them and else the directed search, and the thesis's\n"
@@ -32,7 +33,9 @@ const char* kUsage =
     "    vg_open took on the blob (open_ms: with --inner-rows-at-open it computes the inner rows),\n"
     "    and the p50 and p99 of fixed work as long as the point-to-point p50 (the host's own\n"
     "    timing noise, which lifts every p99: fixed_work_p50_us, fixed_work_p99_us).\n"
-    "  --runtime-only  time the runtime's queries alone (meshes too large for the exact engine)\n"
+    "  --runtime-only  time the runtime's queries alone (meshes too large for the exact engine),\n"
+    "    and also one-to-all on K threads (vg_distance_field_parallel, default 2; the two take\n"
+    "    turns per source)\n"
     "  With hub labels the runtime's workspace reads an endpoint table (vg_endpoint_table_build;\n"
     "  its bytes and build time are printed); --no-endpoint-table times the labels without one.\n";
 
@@ -50,7 +53,7 @@ struct Errors {
 }  // namespace
 
 int runBench(int argc, char** argv) {
-    cli::Args args(argc, argv, {"--pairs", "--sources", "--dijkstra-pairs", "--seed", "--turn"}, {"--json", "--help", "--repair", "--runtime-only", "--no-endpoint-table"});
+    cli::Args args(argc, argv, {"--pairs", "--sources", "--dijkstra-pairs", "--seed", "--turn", "--field-threads"}, {"--json", "--help", "--repair", "--runtime-only", "--no-endpoint-table"});
     if (args.flag("--help")) {
         std::printf("%s", kUsage);
         return 0;
@@ -58,8 +61,10 @@ int runBench(int argc, char** argv) {
     if (args.positional().size() != 2) throw cli::UsageError(std::string("expected MESH and BLOB\n") + kUsage);
     const long long pairCount = args.integer("--pairs", 1000), sourceCount = args.integer("--sources", 5);
     const long long dijkstraPairs = args.integer("--dijkstra-pairs", 200), turnPairs = args.integer("--turn", 500);
+    const long long fieldThreads = args.integer("--field-threads", 2);
     if (pairCount < 1 || sourceCount < 1 || dijkstraPairs < 1 || turnPairs < 1)
         throw cli::UsageError("--pairs, --sources, --dijkstra-pairs and --turn must be >= 1");
+    if (fieldThreads < 1 || fieldThreads > 64) throw cli::UsageError("--field-threads must be 1 to 64");
     const uint64_t seed = uint64_t(args.integer("--seed", 1));
 
     Mesh mesh;
@@ -115,32 +120,55 @@ int runBench(int argc, char** argv) {
 
     std::vector<float> field(V);  // one output buffer for every timed field
     if (args.flag("--runtime-only")) {
-        for (uint32_t s : sources) {
-            const std::vector<uint32_t> source = {s};
-            Stopwatch a;
-            ws.field(source, field);
-            msadMs.push_back(a.seconds() * 1e3);
-            sink = field[s];
+        // One-to-all on one thread and on K (the query's workspace and K - 1 more, tasks on
+        // persistent threads as a job system's), taking turns per source.
+        TaskThreads helpers(unsigned(fieldThreads - 1));
+        std::vector<RuntimeWorkspace> fieldWorkspaces;
+        std::vector<vg_workspace*> parallelWs = {ws.get()};
+        for (long long i = 1; i < fieldThreads; ++i) fieldWorkspaces.emplace_back(graph);
+        for (const RuntimeWorkspace& w : fieldWorkspaces) parallelWs.push_back(w.get());
+        std::vector<double> parallelMs;
+        for (size_t i = 0; i < sources.size(); ++i) {
+            const std::vector<uint32_t> source = {sources[i]};
+            for (int k = 0; k < 2; ++k) {
+                if ((k == 0) == (i % 2 == 0)) {
+                    Stopwatch a;
+                    ws.field(source, field);
+                    msadMs.push_back(a.seconds() * 1e3);
+                } else {
+                    Stopwatch a;
+                    const vg_status st = vg_distance_field_parallel(graph.graph(), parallelWs.data(), uint32_t(parallelWs.size()),
+                                                                    source.data(), 1, field.data(), nullptr,
+                                                                    TaskThreads::parallelFor, &helpers);
+                    parallelMs.push_back(a.seconds() * 1e3);
+                    if (st != VG_OK) {
+                        std::fprintf(stderr, "vorogeo bench: vg_distance_field_parallel: %s\n", vg_status_string(st));
+                        return 1;
+                    }
+                }
+                sink = field[sources[i]];
+            }
         }
         (void)sink;
-        const double msad = percentile(msadMs, 50);
+        const double msad = percentile(msadMs, 50), msadParallel = percentile(parallelMs, 50);
         if (args.flag("--json"))
             std::printf("{\"mesh\":\"%s\",\"mode\":\"%s\",\"vertices\":%u,\"blob_bytes\":%zu,\"pairs\":%zu,\"turn_pairs\":%zu,\"sources\":%zu,"
                         "\"sssd_p50_us\":%.2f,\"sssd_p99_us\":%.2f,\"bidirectional_sssd_p50_us\":%.2f,"
                         "\"bidirectional_sssd_p99_us\":%.2f,\"msad_p50_ms\":%.3f,\"open_ms\":%.1f,"
                         "\"fixed_work_p50_us\":%.2f,\"fixed_work_p99_us\":%.2f,"
-                        "\"endpoint_table_bytes\":%zu,\"endpoint_table_build_ms\":%.1f}\n",
+                        "\"endpoint_table_bytes\":%zu,\"endpoint_table_build_ms\":%.1f,"
+                        "\"field_threads\":%lld,\"msad_threads_p50_ms\":%.3f}\n",
                         args.positional()[0].c_str(), mode, V, graph.blobBytes(), pairs.size(), turn, sources.size(), sssdP50,
                         sssdP99, thesisP50, thesisP99, msad, graph.openSeconds() * 1e3, host.p50Us, host.p99Us,
-                        table.get() ? table.bytes() : size_t(0), table.buildSeconds() * 1e3);
+                        table.get() ? table.bytes() : size_t(0), table.buildSeconds() * 1e3, fieldThreads, msadParallel);
         else
-            std::printf("%s: %u vertices, blob %zu bytes (opened in %.1f ms); %zu pairs, %zu sources, 1 thread, runtime only\n"
+            std::printf("%s: %u vertices, blob %zu bytes (opened in %.1f ms); %zu pairs, %zu sources, runtime only, 1 thread unless said\n"
                         "point-to-point (%s%s) p50 %.1f us, p99 %.1f us (thesis's bidirectional search: p50 %.1f us, "
-                        "p99 %.1f us; %.2fx / %.2fx); one-to-all p50 %.2f ms\n"
+                        "p99 %.1f us; %.2fx / %.2fx); one-to-all p50 %.2f ms (on %lld threads: %.2f ms)\n"
                         "host noise: fixed work as long as the p50 takes p50 %.1f us, p99 %.1f us\n",
                         args.positional()[0].c_str(), V, graph.blobBytes(), graph.openSeconds() * 1e3, pairs.size(),
                         sources.size(), mode, tableNote, sssdP50, sssdP99, thesisP50, thesisP99, thesisP50 / sssdP50, thesisP99 / sssdP99,
-                        msad, host.p50Us, host.p99Us);
+                        msad, fieldThreads, msadParallel, host.p50Us, host.p99Us);
         return 0;
     }
 

@@ -92,20 +92,13 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws,
     lowerGroup();
 }
 
-// Vertices of one patch that are not active nodes: best over its reached active nodes
-// (whose labels are final once the search is done).
-void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_workspace& ws, float* out,
-               uint32_t* nearest) {
+// The reached active nodes of patch `patchIndex` (whose labels are final once the search is
+// done) into the workspace's per-patch lists (patchNodeSlot, patchNodeDistance,
+// patchNodeRow, slotEntries) and the labels and sources of all its node slots (slotLabel,
+// slotOrigin, read once: the search left them all over the label array); their number.
+uint32_t reachedNodes(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_workspace& ws) {
     const Patch& p = g.second[patchIndex];
     const uint32_t* slots = g.slots + p.slotBegin;
-    const uint32_t interior = p.slotCount - p.nodeCount;
-    float* best = ws.patchBest;
-    uint32_t* bestNode = ws.patchBestNode;
-    for (uint32_t j = 0; j < interior; ++j) {
-        best[j] = __builtin_inff();
-        bestNode[j] = kNone;
-    }
-    // The node slots' labels, read once (the search left them all over the label array).
     uint32_t reached = 0;
     for (uint32_t i = 0; i < p.nodeCount; ++i) {
         const uint32_t n = slots[i];
@@ -123,7 +116,15 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
             ++reached;
         }
     }
-    // Merged-away nodes (slots before the interior ones) take the best reached node too.
+    return reached;
+}
+
+// Merged-away nodes (slots before the interior ones) of the patch take the best of its
+// `reached` nodes too (they lie in several patches: the first patch giving the best wins).
+void fillMergedAwayFrom(const vg_graph& g, uint32_t patchIndex, const vg_workspace& ws, uint32_t reached, float* out,
+                        uint32_t* nearest) {
+    const Patch& p = g.second[patchIndex];
+    const uint32_t* slots = g.slots + p.slotBegin;
     for (uint32_t j = 0; j < p.nodeCount; ++j) {
         const uint32_t n = slots[j];
         if (nodeActive(g, n)) continue;
@@ -136,6 +137,23 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
             }
         }
     }
+}
+
+// Vertices of one patch that are not active nodes: best over its reached active nodes.
+// `mergedAway` false leaves its merged-away nodes (which other patches share) to the caller.
+void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_workspace& ws, float* out,
+               uint32_t* nearest, bool mergedAway) {
+    const Patch& p = g.second[patchIndex];
+    const uint32_t* slots = g.slots + p.slotBegin;
+    const uint32_t interior = p.slotCount - p.nodeCount;
+    float* best = ws.patchBest;
+    uint32_t* bestNode = ws.patchBestNode;
+    for (uint32_t j = 0; j < interior; ++j) {
+        best[j] = __builtin_inff();
+        bestNode[j] = kNone;
+    }
+    const uint32_t reached = reachedNodes(g, patchIndex, f, ws);
+    if (mergedAway) fillMergedAwayFrom(g, patchIndex, ws, reached, out, nearest);
     lowerFromRows(g.avx2, g, p.scale, ws.patchNodeRow, ws.patchNodeDistance, nullptr, reached, interior, best,
                   bestNode, ws.patchEntries, entriesStride(interior));
     unfoldAtBestNodes(g, patchIndex, ws, reached);
@@ -145,6 +163,16 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
             out[v] = best[j];
             if (nearest) nearest[v] = ws.slotOrigin[ws.patchNodeSlot[bestNode[j]]];
         }
+    }
+}
+
+// The merged-away nodes of every patch, in patch order (after a fill that left them).
+void fillMergedAway(const vg_graph& g, const Frontier& f, vg_workspace& ws, float* out, uint32_t* nearest) {
+    for (uint32_t i = 0; i < g.secondCount; ++i) {
+        const Patch& p = g.second[i];
+        bool any = false;
+        for (uint32_t j = 0; j < p.nodeCount && !any; ++j) any = !nodeActive(g, g.slots[p.slotBegin + j]);
+        if (any) fillMergedAwayFrom(g, i, ws, reachedNodes(g, i, f, ws), out, nearest);
     }
 }
 
@@ -242,6 +270,12 @@ inline void prefetchEntries(const vg_graph& g, uint64_t first, uint64_t count) {
     for (uintptr_t x = b; x < e + 63; x += 64) __builtin_prefetch(reinterpret_cast<const void*>(x));
 }
 
+// The node x other block of patch i, which its fill reads.
+inline void prefetchFillBlock(const vg_graph& g, uint32_t i) {
+    const Patch& q = g.second[i];
+    prefetchEntries(g, interiorRowStart(q, 0), uint64_t(q.nodeCount) * (q.slotCount - q.nodeCount));
+}
+
 enum Phase : uint32_t { Search = 0, Nodes = 1, Fill = 2, Direct = 3, Done = 4 };
 
 // Source i of the query as an endpoint; false for a vertex used by no face.
@@ -284,13 +318,14 @@ vg_status beginField(const vg_graph* graph, vg_workspace* workspace, const uint3
     return VG_OK;
 }
 
-// Runs up to `budget` units of the query begun by beginField; true once it is complete.
-bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget) {
+// Runs up to `budget` units of the query begun by beginField, stopping early on reaching
+// phase `stop`; true once it is complete.
+bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget, uint32_t stop = Done) {
     FieldSlice& s = ws.slice;
     Frontier& F = ws.forward;
     float* out = s.out;
     uint32_t* nearest = s.nearest;
-    for (; budget > 0 && s.phase != Done; --budget) {
+    for (; budget > 0 && s.phase < stop; --budget) {
         if (s.phase == Search) {
             if (!ws.patchQueue.empty()) {
                 const uint32_t patch = ws.patchQueue.pop();
@@ -313,11 +348,8 @@ bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget) {
             s.next = 0;
         } else if (s.phase == Fill) {
             if (s.next < g.secondCount) {
-                if (s.next + 1 < g.secondCount) {  // the next one's node x other block
-                    const Patch& q = g.second[s.next + 1];
-                    prefetchEntries(g, interiorRowStart(q, 0), uint64_t(q.nodeCount) * (q.slotCount - q.nodeCount));
-                }
-                fillPatch(g, s.next++, F, ws, out, nearest);
+                if (s.next + 1 < g.secondCount) prefetchFillBlock(g, s.next + 1);
+                fillPatch(g, s.next++, F, ws, out, nearest, true);
                 continue;
             }
             s.phase = Direct;
@@ -357,7 +389,66 @@ bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget) {
     return s.phase == Done;
 }
 
+// vg_distance_field_parallel's tasks: each claims runs of patches from a shared counter
+// (patches differ in cost, so fixed shares would leave one thread waiting) and fills them
+// with its own workspace as scratch, reading the labels of the query's workspace.
+constexpr uint32_t kPatchesPerClaim = 8;
+
+struct FillTasks {
+    const vg_graph* graph;
+    vg_workspace* const* workspaces;
+    uint32_t count;
+    uint32_t next;  // the first patch not yet claimed (atomic: the tasks share it)
+};
+
+void fillTask(void* context, uint32_t index) {
+    FillTasks& t = *static_cast<FillTasks*>(context);
+    if (index >= t.count) return;
+    const vg_graph& g = *t.graph;
+    const vg_workspace& query = *t.workspaces[0];
+    vg_workspace& scratch = *t.workspaces[index];
+    for (;;) {
+        const uint32_t first = __atomic_fetch_add(&t.next, kPatchesPerClaim, __ATOMIC_RELAXED);
+        if (first >= g.secondCount) return;
+        const uint32_t end = g.secondCount - first < kPatchesPerClaim ? g.secondCount : first + kPatchesPerClaim;
+        for (uint32_t i = first; i < end; ++i) {
+            if (i + 1 < end) prefetchFillBlock(g, i + 1);
+            fillPatch(g, i, query.forward, scratch, query.slice.out, query.slice.nearest, false);
+        }
+    }
+}
+
+void runInTurn(void*, uint32_t count, vg_task task, void* context) {
+    for (uint32_t i = 0; i < count; ++i) task(context, i);
+}
+
 }  // namespace
+
+extern "C" vg_status vg_distance_field_parallel(const vg_graph* graph, vg_workspace* const* workspaces,
+                                                uint32_t workspace_count, const uint32_t* sources,
+                                                size_t source_count, float* out_distances, uint32_t* out_nearest,
+                                                vg_parallel_for parallel_for, void* user_context) {
+    if (workspaces == nullptr || workspace_count == 0) return VG_ERR_INVALID_ARGUMENT;
+    for (uint32_t i = 0; i < workspace_count; ++i) {
+        if (workspaces[i] == nullptr) return VG_ERR_INVALID_ARGUMENT;
+        if (graph != nullptr && workspaces[i]->graph != graph) return VG_ERR_WRONG_WORKSPACE;
+        for (uint32_t j = 0; j < i; ++j)
+            if (workspaces[j] == workspaces[i]) return VG_ERR_INVALID_ARGUMENT;
+    }
+    const vg_status st = beginField(graph, workspaces[0], sources, nullptr, source_count, out_distances, out_nearest);
+    if (st != VG_OK) return st;
+    const vg_graph& g = *graph;
+    vg_workspace& ws = *workspaces[0];
+    advanceField(g, ws, ~uint64_t(0), Fill);  // the search and the nodes' own distances
+    for (uint32_t i = 1; i < workspace_count; ++i) beginQuery(*workspaces[i]);  // ends their sliced queries
+    FillTasks tasks{graph, workspaces, workspace_count, 0};
+    (parallel_for != nullptr ? parallel_for : runInTurn)(user_context, workspace_count, fillTask, &tasks);
+    fillMergedAway(g, ws.forward, ws, out_distances, out_nearest);
+    ws.slice.phase = Direct;
+    ws.slice.next = 0;
+    advanceField(g, ws, ~uint64_t(0));
+    return VG_OK;
+}
 
 extern "C" vg_status vg_distance_field_nearest(const vg_graph* graph, vg_workspace* workspace,
                                                const uint32_t* sources, size_t source_count, float* out_distances,

@@ -116,6 +116,13 @@ bool runAll(const std::vector<uint8_t>& blobBytes, const char* label) {
     ok = ok && check(vg_nearest(g, ws, 10, targets, 4, &index, &d), "vg_nearest");
     ok = ok && check(vg_distance_field_begin(g, ws, targets, 4, field.data(), labels.data()), "vg_distance_field_begin");
     for (int done = 0; ok && !done;) ok = check(vg_distance_field_step(g, ws, 64, &done), "vg_distance_field_step");
+    // Two workspaces, the second in the upper half of the workspace buffer; its tasks in turn.
+    vg_workspace* second = nullptr;
+    ok = ok && 2 * wsBytes <= wsMemory.size() &&
+         check(vg_workspace_init(g, wsMemory.data() + wsMemory.size() / 2, wsBytes, &second), "second workspace");
+    vg_workspace* const both[2] = {ws, second};
+    ok = ok && check(vg_distance_field_parallel(g, both, 2, targets, 4, field.data(), labels.data(), nullptr, nullptr),
+                     "vg_distance_field_parallel");
     // Surface points (points declared before counting started: nothing here may allocate).
     const uint32_t F = ok ? vg_face_count(g) : 0;
     vg_point pts[4];

@@ -244,19 +244,20 @@ VG_API vg_status vg_distance_field_begin(const vg_graph* graph, vg_workspace* wo
 VG_API vg_status vg_distance_field_step(const vg_graph* graph, vg_workspace* workspace,
                                  uint32_t max_steps, int* out_done);
 
-/* The same query on several threads (a job system's workers): one thread runs the search
- * over the patches' nodes, then the patches' fill, ~60% of the work on igea, is shared out.
- * The call runs the search on workspaces[0] (the query's own), then calls
- * parallel_for(user_context, workspace_count, task, task_context) once: the caller's
- * scheduler must call task(task_context, i) once for every i < workspace_count, on any
- * threads in any order, and return when all have returned (so that their writes are seen
- * by this thread afterwards, as any job system's wait gives). Task i fills patches, as it
- * claims them, with workspaces[i] as its scratch; no task waits for another, so a
- * scheduler that runs them one after another is fine too (parallel_for NULL: this thread
- * runs them in turn). The outputs are bit for bit vg_distance_field_nearest's.
+/* The same query on several threads (a job system's workers). The call seeds the search on
+ * workspaces[0] (the query's own), then calls parallel_for(user_context, workspace_count,
+ * task, task_context) once: the caller's scheduler must call task(task_context, i) once for
+ * every i < workspace_count, on any threads in any order, and return when all have
+ * returned (so that their writes are seen by this thread afterwards, as any job system's
+ * wait gives). The first task to start runs the search over the patches' nodes and tells,
+ * as it goes, which patches' node distances are final; the others fill those patches
+ * meanwhile, each with a workspace of its own as scratch, and all share the rest of the fill
+ * after the search. A task waits only for a search that is running, so a scheduler that
+ * runs the tasks one after another is fine too (parallel_for NULL: this thread runs them
+ * in turn). The outputs are bit for bit vg_distance_field_nearest's.
  * The workspaces are distinct, of this graph, and belong to the call until it returns (a
  * sliced query on any of them is abandoned). VG_ERR_INVALID_ARGUMENT for none, a NULL or a
- * repeated one. igea: 1.3-1.4x on two threads (BENCHMARKS.md). */
+ * repeated one. igea: ~1.5x on two threads (BENCHMARKS.md). */
 typedef void (*vg_task)(void* task_context, uint32_t index);
 typedef void (*vg_parallel_for)(void* user_context, uint32_t count, vg_task task, void* task_context);
 VG_API vg_status vg_distance_field_parallel(const vg_graph* graph, vg_workspace* const* workspaces,

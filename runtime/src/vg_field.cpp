@@ -207,8 +207,45 @@ inline void announce(const vg_graph& g, vg_workspace& ws, uint32_t v, float d, u
     }
 }
 
-// Starts the search from the seeded labels (in the node heap of the forward frontier).
-void beginPatchSearch(const vg_graph& g, vg_workspace& ws) {
+// vg_distance_field_parallel's bookkeeping (ParallelFill, vg_workspace.h). Active node v
+// has its first label: each of its patches counts it, and a patch whose active nodes now
+// all have labels waits in `pending` under the largest (labels only drop, so a key that
+// is no longer the largest is still an upper bound of it).
+void countLabelled(const vg_graph& g, ParallelFill& P, const Frontier& f, uint32_t v) {
+    for (uint32_t m = g.nodeSecondBegin[v]; m < g.nodeSecondBegin[v + 1]; ++m) {
+        const uint32_t patch = g.nodeSecond[m].patch;
+        if (++P.labelledNodes[patch] != P.activeNodes[patch]) continue;
+        const Patch& p = g.second[patch];
+        float largest = 0.0f;
+        for (uint32_t j = 0; j < p.nodeCount; ++j) {
+            const uint32_t n = g.slots[p.slotBegin + j];
+            if (nodeActive(g, n) && f.label[n].dist > largest) largest = f.label[n].dist;
+        }
+        heapSiftUp(P.pending, P.pendingCount++, HeapEntry{largest, patch}, [&](uint32_t i, HeapEntry e) { P.pending[i] = e; });
+    }
+}
+
+// Appends patch i to the ready list (not yet visible to the tasks).
+inline void markReady(ParallelFill& P, uint32_t i, uint32_t& length) {
+    P.readyPatches[length++] = i;
+    P.labelledNodes[i] = kNone;
+}
+
+// Makes the pending patches whose largest label is at most `finalBelow` ready, and tells the
+// tasks (the release store: the labels they will read were written before it).
+void publishFinal(ParallelFill& P, float finalBelow) {
+    uint32_t length = P.published;  // only the search writes it
+    while (P.pendingCount > 0 && P.pending[0].key <= finalBelow) {
+        markReady(P, P.pending[0].node, length);
+        const HeapEntry last = P.pending[--P.pendingCount];
+        if (P.pendingCount > 0) heapSiftDown(P.pending, P.pendingCount, 0, last, [&](uint32_t i, HeapEntry e) { P.pending[i] = e; });
+    }
+    if (length != P.published) __atomic_store_n(&P.published, length, __ATOMIC_RELEASE);
+}
+
+// Starts the search from the seeded labels (in the node heap of the forward frontier);
+// with `P`, counts the seeded active nodes for it.
+void beginPatchSearch(const vg_graph& g, vg_workspace& ws, ParallelFill* P) {
     for (uint32_t i = 0; i < g.secondCount; ++i) {
         ws.patchQueue.position[i] = kNone;
         const Patch& p = g.second[i];
@@ -219,6 +256,7 @@ void beginPatchSearch(const vg_graph& g, vg_workspace& ws) {
     while (!f.empty()) {
         const uint32_t u = f.pop().node;
         announce(g, ws, u, f.label[u].dist, f.route[u].via);
+        if (P != nullptr && nodeActive(g, u)) countLabelled(g, *P, f, u);
     }
 }
 
@@ -226,7 +264,7 @@ void beginPatchSearch(const vg_graph& g, vg_workspace& ws) {
 // source lowers the others by its row); the nodes whose labels drop tell their other
 // patches. Every node ends at the smallest label + entry, from the first source in slot
 // order that gives it.
-void visitPatch(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws) {
+void visitPatch(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws, ParallelFill* P) {
     Frontier& f = ws.forward;
     const Patch& p = g.second[patchIndex];
     const uint32_t n = p.nodeCount;
@@ -255,9 +293,11 @@ void visitPatch(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws) {
     for (uint32_t j = 0; j < n; ++j) {
         if (from[j] == kNone) continue;
         const uint32_t v = slots[j], u = slots[from[j]];
+        const bool first = !f.labelled(v);
         f.label[v] = Label{best[j], f.generation};
         f.route[v] = Route{patchIndex, kNone, f.route[u].origin, u};
         announce(g, ws, v, best[j], patchIndex);
+        if (P != nullptr && first) countLabelled(g, *P, f, v);
     }
 }
 
@@ -289,7 +329,7 @@ bool sourceEndpoint(const vg_graph& g, const FieldSlice& s, size_t i, Endpoint& 
 // Checks the arguments, clears the outputs and seeds the search from the sources (vertex
 // ids, or surface points when `points` is given).
 vg_status beginField(const vg_graph* graph, vg_workspace* workspace, const uint32_t* sources, const vg_point* points,
-                     size_t source_count, float* out_distances, uint32_t* out_nearest) {
+                     size_t source_count, float* out_distances, uint32_t* out_nearest, bool parallel = false) {
     const vg_status st = vg::checkQuery(graph, workspace, out_distances);
     if (st != VG_OK) return st;
     if (source_count > 0 && sources == nullptr && points == nullptr) return VG_ERR_INVALID_ARGUMENT;
@@ -314,7 +354,12 @@ vg_status beginField(const vg_graph* graph, vg_workspace* workspace, const uint3
         Endpoint e;
         if (sourceEndpoint(g, ws.slice, i, e)) seedEndpoint(g, e, uint32_t(i), ws.forward, key, none);
     }
-    beginPatchSearch(g, ws);
+    ParallelFill* P = parallel ? &ws.parallel : nullptr;
+    if (P != nullptr) {
+        for (uint32_t i = 0; i < g.secondCount; ++i) P->labelledNodes[i] = 0;
+        P->pendingCount = P->published = P->claimed = P->arrivals = 0;
+    }
+    beginPatchSearch(g, ws, P);
     return VG_OK;
 }
 
@@ -333,7 +378,7 @@ bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget, uint32_t
                     const Patch& q = g.second[ws.patchQueue.heap[0].node];
                     prefetchEntries(g, q.matrixBegin, uint64_t(q.nodeCount) * q.nodeCount);
                 }
-                visitPatch(g, patch, ws);
+                visitPatch(g, patch, ws, nullptr);
                 continue;
             }
             s.phase = Nodes;
@@ -389,32 +434,70 @@ bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget, uint32_t
     return s.phase == Done;
 }
 
-// vg_distance_field_parallel's tasks: each claims runs of patches from a shared counter
-// (patches differ in cost, so fixed shares would leave one thread waiting) and fills them
-// with its own workspace as scratch, reading the labels of the query's workspace.
-constexpr uint32_t kPatchesPerClaim = 8;
-
-struct FillTasks {
+// vg_distance_field_parallel's tasks. The first to start runs the search on the query's
+// workspace, telling which patches are ready as it goes (publishFinal), then fills too;
+// the others fill ready patches meanwhile, each with a workspace of its own as scratch (the
+// n-th to start takes the n-th workspace), in the order the patches became ready. A task
+// waits only for patches that a running search has still to make ready, so any scheduler
+// does: one that runs the tasks in turn runs the search, then all the fill, in the first.
+struct FieldTasks {
     const vg_graph* graph;
     vg_workspace* const* workspaces;
     uint32_t count;
-    uint32_t next;  // the first patch not yet claimed (atomic: the tasks share it)
 };
 
-void fillTask(void* context, uint32_t index) {
-    FillTasks& t = *static_cast<FillTasks*>(context);
-    if (index >= t.count) return;
-    const vg_graph& g = *t.graph;
-    const vg_workspace& query = *t.workspaces[0];
-    vg_workspace& scratch = *t.workspaces[index];
-    for (;;) {
-        const uint32_t first = __atomic_fetch_add(&t.next, kPatchesPerClaim, __ATOMIC_RELAXED);
-        if (first >= g.secondCount) return;
-        const uint32_t end = g.secondCount - first < kPatchesPerClaim ? g.secondCount : first + kPatchesPerClaim;
-        for (uint32_t i = first; i < end; ++i) {
-            if (i + 1 < end) prefetchFillBlock(g, i + 1);
-            fillPatch(g, i, query.forward, scratch, query.slice.out, query.slice.nearest, false);
+inline void pause() {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+}
+
+// The search to its end, with the nodes' own distances; then every patch not yet ready
+// (unreached nodes, or still pending) becomes so.
+void searchPublishing(const vg_graph& g, vg_workspace& ws) {
+    ParallelFill& P = ws.parallel;
+    while (!ws.patchQueue.empty()) {
+        publishFinal(P, ws.patchQueue.heap[0].key);
+        const uint32_t patch = ws.patchQueue.pop();
+        if (!ws.patchQueue.empty()) {
+            const Patch& q = g.second[ws.patchQueue.heap[0].node];
+            prefetchEntries(g, q.matrixBegin, uint64_t(q.nodeCount) * q.nodeCount);
         }
+        visitPatch(g, patch, ws, &P);
+    }
+    for (uint32_t first = 0; first < g.nodeCount; first += kNodesPerStep)
+        writeNodes(g, ws.forward, first, ws.slice.out, ws.slice.nearest);
+    uint32_t length = P.published;
+    for (uint32_t i = 0; i < g.secondCount; ++i)
+        if (P.labelledNodes[i] != kNone) markReady(P, i, length);
+    __atomic_store_n(&P.published, length, __ATOMIC_RELEASE);
+}
+
+// Index i of the ready list once the search has published it.
+inline uint32_t readyPatch(const ParallelFill& P, uint32_t i) {
+    while (__atomic_load_n(&P.published, __ATOMIC_ACQUIRE) <= i) pause();
+    return P.readyPatches[i];
+}
+
+void fieldTask(void* context, uint32_t) {
+    FieldTasks& t = *static_cast<FieldTasks*>(context);
+    vg_workspace& query = *t.workspaces[0];
+    ParallelFill& P = query.parallel;
+    const uint32_t arrival = __atomic_fetch_add(&P.arrivals, 1u, __ATOMIC_RELAXED);
+    if (arrival >= t.count) return;  // (a scheduler calling more tasks than asked)
+    const vg_graph& g = *t.graph;
+    vg_workspace& scratch = *t.workspaces[arrival];
+    if (arrival == 0) searchPublishing(g, query);
+    const uint32_t total = g.secondCount;
+    uint32_t next = __atomic_fetch_add(&P.claimed, 1u, __ATOMIC_RELAXED);
+    uint32_t patch = next < total ? readyPatch(P, next) : kNone;
+    while (patch != kNone) {
+        // The next claim's block asked for while this patch fills, when it is ready already.
+        next = __atomic_fetch_add(&P.claimed, 1u, __ATOMIC_RELAXED);
+        const bool more = next < total;
+        if (more && __atomic_load_n(&P.published, __ATOMIC_ACQUIRE) > next) prefetchFillBlock(g, P.readyPatches[next]);
+        fillPatch(g, patch, query.forward, scratch, query.slice.out, query.slice.nearest, false);
+        patch = more ? readyPatch(P, next) : kNone;
     }
 }
 
@@ -435,14 +518,14 @@ extern "C" vg_status vg_distance_field_parallel(const vg_graph* graph, vg_worksp
         for (uint32_t j = 0; j < i; ++j)
             if (workspaces[j] == workspaces[i]) return VG_ERR_INVALID_ARGUMENT;
     }
-    const vg_status st = beginField(graph, workspaces[0], sources, nullptr, source_count, out_distances, out_nearest);
+    const vg_status st =
+        beginField(graph, workspaces[0], sources, nullptr, source_count, out_distances, out_nearest, true);
     if (st != VG_OK) return st;
     const vg_graph& g = *graph;
     vg_workspace& ws = *workspaces[0];
-    advanceField(g, ws, ~uint64_t(0), Fill);  // the search and the nodes' own distances
     for (uint32_t i = 1; i < workspace_count; ++i) beginQuery(*workspaces[i]);  // ends their sliced queries
-    FillTasks tasks{graph, workspaces, workspace_count, 0};
-    (parallel_for != nullptr ? parallel_for : runInTurn)(user_context, workspace_count, fillTask, &tasks);
+    FieldTasks tasks{graph, workspaces, workspace_count};
+    (parallel_for != nullptr ? parallel_for : runInTurn)(user_context, workspace_count, fieldTask, &tasks);
     fillMergedAway(g, ws.forward, ws, out_distances, out_nearest);
     ws.slice.phase = Direct;
     ws.slice.next = 0;

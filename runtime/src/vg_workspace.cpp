@@ -94,6 +94,10 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.patchQueue.heap = L.take<vg::HeapEntry>(g.secondCount);
     o.patchQueue.size = 0;
     o.slotSent = L.take<float>(secondNodeSlotEnd(g));
+    o.parallel.activeNodes = L.take<uint32_t>(g.secondCount);
+    o.parallel.labelledNodes = L.take<uint32_t>(g.secondCount);
+    o.parallel.readyPatches = L.take<uint32_t>(g.secondCount);
+    o.parallel.pending = L.take<vg::HeapEntry>(g.secondCount);
     o.targetEndpoints = L.take<vg::Endpoint>(vg::kTargetChunk);
     o.pathNodes = L.take<uint32_t>(N + 1);
     o.pathLegs = L.take<vg::PathLeg>(vg::maxPathLegs(N));
@@ -343,6 +347,12 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
         fillHubPatchReach(*graph, ws->hubPatchReach);
         fillHubInnerRows(*graph, ws->hubInnerRowOfSlot);
         for (uint32_t r = 0; r < ws->pairListCapacity; ++r) ws->pairIndexOfRank[r] = vg::kNone;
+    }
+    for (uint32_t i = 0; i < graph->secondCount; ++i) {
+        const vg::Patch& p = graph->second[i];
+        uint32_t active = 0;
+        for (uint32_t j = 0; j < p.nodeCount; ++j) active += vg::nodeActive(*graph, graph->slots[p.slotBegin + j]) ? 1 : 0;
+        ws->parallel.activeNodes[i] = active;
     }
     ws->searchMode = VG_SEARCH_HUB_LABELS;
     *out_workspace = ws;

@@ -184,6 +184,22 @@ private:
     }
 };
 
+// vg_distance_field_parallel's shared state, in the query's workspace: the search tells
+// which patches' node labels are final (each patch once, in readyPatches), and the tasks
+// fill them from there while it goes on. A label at most the patch queue's smallest key
+// can no longer drop (every later label is some relaxed label plus an entry), so a patch
+// is ready once all its active nodes have labels and the largest is below that key.
+struct ParallelFill {
+    uint32_t* activeNodes;   // per second-layer patch: its active nodes (set at workspace init)
+    uint32_t* labelledNodes; // ... how many of them have labels; kNone once it is ready
+    uint32_t* readyPatches;  // the patches in the order they became ready
+    HeapEntry* pending;      // patches whose active nodes all have labels, by the largest then
+    uint32_t pendingCount;
+    uint32_t published;      // readyPatches' length (atomic: written by the search, read by tasks)
+    uint32_t claimed;        // the next readyPatches index a task takes (atomic)
+    uint32_t arrivals;       // tasks started (atomic): the first runs the search
+};
+
 // A one-to-all query in progress (vg_distance_field_begin / _step). It is live while its
 // generation is the workspace's: any other query on the workspace abandons it.
 struct FieldSlice {
@@ -231,6 +247,7 @@ struct vg_workspace {
     float* patchEntries;           // node rows over a patch's interior slots, decoded (entriesStride apart)
     vg::PatchQueue patchQueue;     // one-to-all search: patches with news ...
     float* slotSent;               // ... and per node slot: the label last relaxed through that patch
+    vg::ParallelFill parallel;     // vg_distance_field_parallel, on the query's workspace
     vg::Endpoint* targetEndpoints; // kTargetChunk resolved targets (vg_point_k_nearest)
     uint32_t* pathNodes;           // N + 1: a node chain being read off (vg_path)
     vg::PathLeg* pathLegs;         // kMaxPathLegs(N): the route's legs, then ...

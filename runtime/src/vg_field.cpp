@@ -234,13 +234,15 @@ inline void markReady(ParallelFill& P, uint32_t i, uint32_t& length) {
 // Makes the pending patches whose largest label is at most `finalBelow` ready, and tells the
 // tasks (the release store: the labels they will read were written before it).
 void publishFinal(ParallelFill& P, float finalBelow) {
-    uint32_t length = P.published;  // only the search writes it
+    uint32_t length = P.readyCount;
     while (P.pendingCount > 0 && P.pending[0].key <= finalBelow) {
         markReady(P, P.pending[0].node, length);
         const HeapEntry last = P.pending[--P.pendingCount];
         if (P.pendingCount > 0) heapSiftDown(P.pending, P.pendingCount, 0, last, [&](uint32_t i, HeapEntry e) { P.pending[i] = e; });
     }
-    if (length != P.published) __atomic_store_n(&P.published, length, __ATOMIC_RELEASE);
+    if (length == P.readyCount) return;
+    P.readyCount = length;
+    __atomic_store_n(&P.published, length, __ATOMIC_RELEASE);
 }
 
 // Starts the search from the seeded labels (in the node heap of the forward frontier);
@@ -357,7 +359,7 @@ vg_status beginField(const vg_graph* graph, vg_workspace* workspace, const uint3
     ParallelFill* P = parallel ? &ws.parallel : nullptr;
     if (P != nullptr) {
         for (uint32_t i = 0; i < g.secondCount; ++i) P->labelledNodes[i] = 0;
-        P->pendingCount = P->published = P->claimed = P->arrivals = 0;
+        P->pendingCount = P->readyCount = P->published = P->claimed = P->arrivals = 0;
     }
     beginPatchSearch(g, ws, P);
     return VG_OK;
@@ -467,9 +469,10 @@ void searchPublishing(const vg_graph& g, vg_workspace& ws) {
     }
     for (uint32_t first = 0; first < g.nodeCount; first += kNodesPerStep)
         writeNodes(g, ws.forward, first, ws.slice.out, ws.slice.nearest);
-    uint32_t length = P.published;
+    uint32_t length = P.readyCount;
     for (uint32_t i = 0; i < g.secondCount; ++i)
         if (P.labelledNodes[i] != kNone) markReady(P, i, length);
+    P.readyCount = length;
     __atomic_store_n(&P.published, length, __ATOMIC_RELEASE);
 }
 
@@ -488,6 +491,12 @@ void fieldTask(void* context, uint32_t) {
     const vg_graph& g = *t.graph;
     vg_workspace& scratch = *t.workspaces[arrival];
     if (arrival == 0) searchPublishing(g, query);
+    // What the fill reads of the query's workspace, copied once: the search goes on writing
+    // next to it.
+    const Frontier labels = query.forward;
+    float* const out = query.slice.out;
+    uint32_t* const nearest = query.slice.nearest;
+    const uint32_t* const ready = P.readyPatches;
     const uint32_t total = g.secondCount;
     uint32_t next = __atomic_fetch_add(&P.claimed, 1u, __ATOMIC_RELAXED);
     uint32_t patch = next < total ? readyPatch(P, next) : kNone;
@@ -495,8 +504,8 @@ void fieldTask(void* context, uint32_t) {
         // The next claim's block asked for while this patch fills, when it is ready already.
         next = __atomic_fetch_add(&P.claimed, 1u, __ATOMIC_RELAXED);
         const bool more = next < total;
-        if (more && __atomic_load_n(&P.published, __ATOMIC_ACQUIRE) > next) prefetchFillBlock(g, P.readyPatches[next]);
-        fillPatch(g, patch, query.forward, scratch, query.slice.out, query.slice.nearest, false);
+        if (more && __atomic_load_n(&P.published, __ATOMIC_ACQUIRE) > next) prefetchFillBlock(g, ready[next]);
+        fillPatch(g, patch, labels, scratch, out, nearest, false);
         patch = more ? readyPatch(P, next) : kNone;
     }
 }

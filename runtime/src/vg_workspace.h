@@ -195,9 +195,14 @@ struct ParallelFill {
     uint32_t* readyPatches;  // the patches in the order they became ready
     HeapEntry* pending;      // patches whose active nodes all have labels, by the largest then
     uint32_t pendingCount;
-    uint32_t published;      // readyPatches' length (atomic: written by the search, read by tasks)
-    uint32_t claimed;        // the next readyPatches index a task takes (atomic)
-    uint32_t arrivals;       // tasks started (atomic): the first runs the search
+    uint32_t readyCount;     // readyPatches' length, the search's own copy
+    // The shared counters, each on a cache line of its own: a line that one core writes and
+    // another reads moves between them each time, and the search must not pay for the tasks'
+    // claims, nor for a waiting task's reads, in the fields above that it uses throughout.
+    alignas(64) uint32_t published;  // readyPatches' length (atomic: written by the search, read by tasks)
+    alignas(64) uint32_t claimed;    // the next readyPatches index a task takes (atomic)
+    uint32_t arrivals;               // tasks started (atomic): the first runs the search
+    alignas(64) uint32_t end;        // (keeps the next fields off the counters' lines)
 };
 
 // A one-to-all query in progress (vg_distance_field_begin / _step). It is live while its

@@ -53,7 +53,9 @@ ratio = lambda b: (f"{b['bidirectional_sssd_p50_us'] / b['sssd_p50_us']:.1f}x, "
                    f"{b['bidirectional_sssd_p99_us'] / b['sssd_p99_us']:.1f}x")
 print(f"| {label} | {bake['wall_s']:.1f} | {bake['peak_rss_mb']:.0f} | {bake['bytes_per_vertex']:.1f} | {fast} | "
       f"{err(f)} | {err(t)} | {p2p(b1)} | {p2p(b2)} | {ratio(b1)}; {ratio(b2)} | "
-      f"{min(b1['msad_p50_ms'], b2['msad_p50_ms']):.1f}-{max(b1['msad_p50_ms'], b2['msad_p50_ms']):.1f} | "
+      f"{min(b1['msad_p50_ms'], b2['msad_p50_ms']):.1f}-{max(b1['msad_p50_ms'], b2['msad_p50_ms']):.1f} "
+      f"({min(b1['msad_threads_p50_ms'], b2['msad_threads_p50_ms']):.1f}-{max(b1['msad_threads_p50_ms'], b2['msad_threads_p50_ms']):.1f} "
+      f"on {b1['field_threads']} threads) | "
       f"{min(b1['open_ms'], b2['open_ms']):.0f}-{max(b1['open_ms'], b2['open_ms']):.0f} | "
       f"{b1['fixed_work_p99_us']:.0f}, {b2['fixed_work_p99_us']:.0f} |")
 PY

@@ -144,6 +144,24 @@ void queryEverything(const vg_graph* g, const uint8_t* data, size_t size) {
             std::abort();
     }
     if (V && (std::memcmp(sliced.data(), field.data(), V * sizeof(float)) != 0 || slicedLabels != labels)) std::abort();
+
+    // On two workspaces (the second at another odd address), its tasks in turn or the
+    // second first: the same bits again.
+    std::vector<unsigned char> secondMemory(wsBytes + 3);
+    vg_workspace* second = nullptr;
+    if (vg_workspace_init(g, secondMemory.data() + 3, wsBytes, &second) != VG_OK) std::abort();
+    vg_workspace* const both[2] = {ws, second};
+    std::vector<float> parallel(V);
+    std::vector<uint32_t> parallelLabels(V);
+    const vg_parallel_for backwards = [](void*, uint32_t count, vg_task task, void* context) {
+        for (uint32_t i = count; i-- > 0;) task(context, i);
+    };
+    const bool inTurn = steer.u32() % 2 == 0;
+    if (vg_distance_field_parallel(g, both, 2, set + 1, 4, parallel.data(), parallelLabels.data(),
+                                   inTurn ? nullptr : backwards, nullptr) != VG_OK)
+        std::abort();
+    if (V && (std::memcmp(parallel.data(), field.data(), V * sizeof(float)) != 0 || parallelLabels != labels))
+        std::abort();
 }
 
 // A blob with hub labels: its endpoint table, built into memory at an odd address, then

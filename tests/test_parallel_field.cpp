@@ -1,5 +1,6 @@
-// vg_distance_field_parallel: one one-to-all query whose fill several workspaces share, on
-// threads or in turn, against the one-thread query bit for bit; and its argument checks.
+// vg_distance_field_parallel (and its surface-point twin): one one-to-all query whose fill
+// several workspaces share, on threads or in turn, against the one-thread query bit for
+// bit; and its argument checks.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -95,6 +96,35 @@ TEST_CASE("runtime: a one-to-all query on several threads gives the one-thread b
             }
         }
     }
+}
+
+TEST_CASE("runtime: a one-to-all query from surface points on several threads gives the one-thread bits",
+          "[runtime][parallel]") {
+    BakeReport report;
+    RuntimeGraph g = openOrFail(bakeTorus(0.0, report));
+    const vg_graph* graph = g.graph();
+    const uint32_t V = g.vertexCount(), F = vg_face_count(graph);
+    RuntimeWorkspace reference(graph), a(graph), b(graph);
+    vg_workspace* const two[2] = {a.get(), b.get()};
+    const std::vector<vg_point> points = {{3, {0.2f, 0.3f, 0.5f}}, {F / 2, {1.0f, 0.0f, 0.0f}}, {F - 1, {0.1f, 0.1f, 0.8f}}};
+    std::vector<float> expected(V), got(V);
+    std::vector<uint32_t> expectedNearest(V), nearest(V);
+    REQUIRE(vg_point_distance_field(graph, reference.get(), points.data(), points.size(), expected.data(),
+                                    expectedNearest.data()) == VG_OK);
+    for (const bool threads : {false, true}) {
+        Scheduler s;
+        s.threads = threads;
+        REQUIRE(vg_point_distance_field_parallel(graph, two, 2, points.data(), points.size(), got.data(),
+                                                 nearest.data(), runTasks, &s) == VG_OK);
+        CHECK(std::memcmp(got.data(), expected.data(), V * sizeof(float)) == 0);
+        CHECK(nearest == expectedNearest);
+        CHECK(s.calls == 1);
+    }
+    const vg_point bad[1] = {{F, {0.2f, 0.3f, 0.5f}}};
+    CHECK(vg_point_distance_field_parallel(graph, two, 2, bad, 1, got.data(), nullptr, nullptr, nullptr) ==
+          VG_ERR_INVALID_POINT);
+    CHECK(vg_point_distance_field_parallel(graph, two, 2, nullptr, 1, got.data(), nullptr, nullptr, nullptr) ==
+          VG_ERR_INVALID_ARGUMENT);
 }
 
 TEST_CASE("runtime: vg_distance_field_parallel names bad workspaces and arguments", "[runtime][parallel]") {

@@ -307,6 +307,13 @@ VG_API vg_status vg_point_distance_within(const vg_graph* graph, vg_workspace* w
 VG_API vg_status vg_point_distance_field(const vg_graph* graph, vg_workspace* workspace,
                                          const vg_point* sources, size_t source_count,
                                          float* out_distances, uint32_t* out_nearest);
+/* The same on several threads, as vg_distance_field_parallel (the same bits as
+ * vg_point_distance_field). */
+VG_API vg_status vg_point_distance_field_parallel(const vg_graph* graph, vg_workspace* const* workspaces,
+                                                  uint32_t workspace_count, const vg_point* sources,
+                                                  size_t source_count, float* out_distances,
+                                                  uint32_t* out_nearest, vg_parallel_for parallel_for,
+                                                  void* user_context);
 
 /* vg_nearest between surface points (ties: the lowest index). */
 VG_API vg_status vg_point_nearest(const vg_graph* graph, vg_workspace* workspace, const vg_point* source,

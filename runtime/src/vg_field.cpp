@@ -516,10 +516,12 @@ void runInTurn(void*, uint32_t count, vg_task task, void* context) {
 
 }  // namespace
 
-extern "C" vg_status vg_distance_field_parallel(const vg_graph* graph, vg_workspace* const* workspaces,
-                                                uint32_t workspace_count, const uint32_t* sources,
-                                                size_t source_count, float* out_distances, uint32_t* out_nearest,
-                                                vg_parallel_for parallel_for, void* user_context) {
+namespace {
+
+// vg_distance_field_parallel from vertex sources, or from surface points when `points` is given.
+vg_status fieldParallel(const vg_graph* graph, vg_workspace* const* workspaces, uint32_t workspace_count,
+                        const uint32_t* sources, const vg_point* points, size_t source_count, float* out_distances,
+                        uint32_t* out_nearest, vg_parallel_for parallel_for, void* user_context) {
     if (workspaces == nullptr || workspace_count == 0) return VG_ERR_INVALID_ARGUMENT;
     for (uint32_t i = 0; i < workspace_count; ++i) {
         if (workspaces[i] == nullptr) return VG_ERR_INVALID_ARGUMENT;
@@ -528,7 +530,7 @@ extern "C" vg_status vg_distance_field_parallel(const vg_graph* graph, vg_worksp
             if (workspaces[j] == workspaces[i]) return VG_ERR_INVALID_ARGUMENT;
     }
     const vg_status st =
-        beginField(graph, workspaces[0], sources, nullptr, source_count, out_distances, out_nearest, true);
+        beginField(graph, workspaces[0], sources, points, source_count, out_distances, out_nearest, true);
     if (st != VG_OK) return st;
     const vg_graph& g = *graph;
     vg_workspace& ws = *workspaces[0];
@@ -540,6 +542,26 @@ extern "C" vg_status vg_distance_field_parallel(const vg_graph* graph, vg_worksp
     ws.slice.next = 0;
     advanceField(g, ws, ~uint64_t(0));
     return VG_OK;
+}
+
+}  // namespace
+
+extern "C" vg_status vg_distance_field_parallel(const vg_graph* graph, vg_workspace* const* workspaces,
+                                                uint32_t workspace_count, const uint32_t* sources,
+                                                size_t source_count, float* out_distances, uint32_t* out_nearest,
+                                                vg_parallel_for parallel_for, void* user_context) {
+    return fieldParallel(graph, workspaces, workspace_count, sources, nullptr, source_count, out_distances,
+                         out_nearest, parallel_for, user_context);
+}
+
+extern "C" vg_status vg_point_distance_field_parallel(const vg_graph* graph, vg_workspace* const* workspaces,
+                                                      uint32_t workspace_count, const vg_point* sources,
+                                                      size_t source_count, float* out_distances,
+                                                      uint32_t* out_nearest, vg_parallel_for parallel_for,
+                                                      void* user_context) {
+    if (source_count > 0 && sources == nullptr) return VG_ERR_INVALID_ARGUMENT;
+    return fieldParallel(graph, workspaces, workspace_count, nullptr, sources, source_count, out_distances,
+                         out_nearest, parallel_for, user_context);
 }
 
 extern "C" vg_status vg_distance_field_nearest(const vg_graph* graph, vg_workspace* workspace,

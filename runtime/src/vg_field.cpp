@@ -168,12 +168,9 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
 
 // The merged-away nodes of every patch, in patch order (after a fill that left them).
 void fillMergedAway(const vg_graph& g, const Frontier& f, vg_workspace& ws, float* out, uint32_t* nearest) {
-    for (uint32_t i = 0; i < g.secondCount; ++i) {
-        const Patch& p = g.second[i];
-        bool any = false;
-        for (uint32_t j = 0; j < p.nodeCount && !any; ++j) any = !nodeActive(g, g.slots[p.slotBegin + j]);
-        if (any) fillMergedAwayFrom(g, i, ws, reachedNodes(g, i, f, ws), out, nearest);
-    }
+    for (uint32_t i = 0; i < g.secondCount; ++i)
+        if (ws.parallel.activeNodes[i] < g.second[i].nodeCount)
+            fillMergedAwayFrom(g, i, ws, reachedNodes(g, i, f, ws), out, nearest);
 }
 
 // The search's distances of the nodes, a chunk per step (each node once, at its own vertex).
@@ -318,6 +315,17 @@ inline void prefetchFillBlock(const vg_graph& g, uint32_t i) {
     prefetchEntries(g, interiorRowStart(q, 0), uint64_t(q.nodeCount) * (q.slotCount - q.nodeCount));
 }
 
+// One step of the search: the patch with the smallest key visited, the likely next one's
+// node x node block asked for meanwhile.
+inline void visitNextPatch(const vg_graph& g, vg_workspace& ws, ParallelFill* P) {
+    const uint32_t patch = ws.patchQueue.pop();
+    if (!ws.patchQueue.empty()) {
+        const Patch& q = g.second[ws.patchQueue.heap[0].node];
+        prefetchEntries(g, q.matrixBegin, uint64_t(q.nodeCount) * q.nodeCount);
+    }
+    visitPatch(g, patch, ws, P);
+}
+
 enum Phase : uint32_t { Search = 0, Nodes = 1, Fill = 2, Direct = 3, Done = 4 };
 
 // Source i of the query as an endpoint; false for a vertex used by no face.
@@ -375,12 +383,7 @@ bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget, uint32_t
     for (; budget > 0 && s.phase < stop; --budget) {
         if (s.phase == Search) {
             if (!ws.patchQueue.empty()) {
-                const uint32_t patch = ws.patchQueue.pop();
-                if (!ws.patchQueue.empty()) {  // likely the next one: its node x node block
-                    const Patch& q = g.second[ws.patchQueue.heap[0].node];
-                    prefetchEntries(g, q.matrixBegin, uint64_t(q.nodeCount) * q.nodeCount);
-                }
-                visitPatch(g, patch, ws, nullptr);
+                visitNextPatch(g, ws, nullptr);
                 continue;
             }
             s.phase = Nodes;
@@ -460,12 +463,7 @@ void searchPublishing(const vg_graph& g, vg_workspace& ws) {
     ParallelFill& P = ws.parallel;
     while (!ws.patchQueue.empty()) {
         publishFinal(P, ws.patchQueue.heap[0].key);
-        const uint32_t patch = ws.patchQueue.pop();
-        if (!ws.patchQueue.empty()) {
-            const Patch& q = g.second[ws.patchQueue.heap[0].node];
-            prefetchEntries(g, q.matrixBegin, uint64_t(q.nodeCount) * q.nodeCount);
-        }
-        visitPatch(g, patch, ws, &P);
+        visitNextPatch(g, ws, &P);
     }
     for (uint32_t first = 0; first < g.nodeCount; first += kNodesPerStep)
         writeNodes(g, ws.forward, first, ws.slice.out, ws.slice.nearest);

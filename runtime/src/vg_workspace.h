@@ -189,7 +189,7 @@ private:
 // fill them from there while it goes on. A label at most the patch queue's smallest key
 // can no longer drop (every later label is some relaxed label plus an entry), so a patch
 // is ready once all its active nodes have labels and the largest is below that key.
-struct ParallelFill {
+struct alignas(64) ParallelFill {  // (whole lines: the fields after it stay off the counters')
     uint32_t* activeNodes;   // per second-layer patch: its active nodes (set at workspace init)
     uint32_t* labelledNodes; // ... how many of them have labels; kNone once it is ready
     uint32_t* readyPatches;  // the patches in the order they became ready
@@ -202,7 +202,6 @@ struct ParallelFill {
     alignas(64) uint32_t published;  // readyPatches' length (atomic: written by the search, read by tasks)
     alignas(64) uint32_t claimed;    // the next readyPatches index a task takes (atomic)
     uint32_t arrivals;               // tasks started (atomic): the first runs the search
-    alignas(64) uint32_t end;        // (keeps the next fields off the counters' lines)
 };
 
 // A one-to-all query in progress (vg_distance_field_begin / _step). It is live while its

@@ -102,8 +102,10 @@ TEST_CASE("field kernels: lowering from rows and decoding match a plain loop, bi
                     REQUIRE(sameBits(entries[i * stride + j], q == 4095 ? __builtin_inff() : float(int32_t(q)) * scale));
                 }
             }
-            std::vector<float> decoded(n + vg::kRowSlack);
+            std::vector<float> decoded(n + vg::kRowSlack, -1.0f);
             vg::decodeRow(version == 1, r.graph, scale, rows[0], n, decoded.data());
+            // Nothing past the row's stride, where the next row's entries lie.
+            for (size_t j = vg::entriesStride(n); j < decoded.size(); ++j) REQUIRE(decoded[j] == -1.0f);
             for (uint32_t j = 0; j < n; ++j) REQUIRE(sameBits(decoded[j], entries[j]));
         }
     }

@@ -216,7 +216,9 @@ VG_AVX2 bool decodeAvx2(const PackedRun& run, float scale, float* out) {
     for (uint32_t x = 0; x < run.n; x += 16) {
         __m256i q[2];
         unpack16(u, q);
-        for (uint32_t h = 0; h < 2; ++h) {
+        // (Not the second eight past the run: a row's decoded entries end within its stride,
+        // entriesStride, so rows may be decoded in any order.)
+        for (uint32_t h = 0; h < (x + 8 < run.n ? 2u : 1u); ++h) {
             const __m256 e = _mm256_mul_ps(_mm256_cvtepi32_ps(q[h]), s);
             _mm256_storeu_ps(out + x + 8 * h, _mm256_blendv_ps(e, inf, _mm256_castsi256_ps(_mm256_cmpeq_epi32(q[h], none))));
         }

@@ -31,7 +31,8 @@ void lowerFromRows(bool avx2, const vg_graph& g, float scale, const uint64_t* ro
 inline uint32_t entriesStride(uint32_t n) { return (n + 7) & ~7u; }
 
 // n entries from packed index `row` the same way (entry * scale, +inf for no path), into
-// out (with kRowSlack entries of slack).
+// out; writes nothing at or past entriesStride(n), so that rows entriesStride(n) apart
+// may be decoded in any order.
 void decodeRow(bool avx2, const vg_graph& g, float scale, uint64_t row, uint32_t n, float* out);
 
 // A border edge (u, w) of the patch being filled, from a vertex's best node u to a

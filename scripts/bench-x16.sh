@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # Issue #7's scale target in one run: igea after two rounds of Loop subdivision (2.15 M
 # vertices, made with `vorogeo subdivide`, never stored), baked with hub labels on 2 threads
-# under /usr/bin/time, then `vorogeo bench --runtime-only` (labels and the thesis's
-# bidirectional search taking turns on blocks of 500 pairs; one-to-all on 1 and 2 threads)
-# for two seeds. First-layer patches of ~1,500 vertices (--n1 V/1500) rather than the
-# default ~3,000: at this size they make the label query ~1.5x faster (BENCHMARKS.md,
-# session 46), and zstd level 9 keeps the bake well inside 20 minutes.
-# usage: scripts/bench-x16.sh [SHARED_DIR] [N1]   (KEEP=DIR keeps the mesh and blob, ~0.8 GB;
-# VOROGEO=path runs another build of the tool)
+# under /usr/bin/time (wall time and peak memory), then `vorogeo bench --runtime-only`
+# (labels and the thesis's bidirectional search taking turns on blocks of 500 pairs;
+# one-to-all on 1 and 2 threads) for two seeds.
+# usage: scripts/bench-x16.sh [SHARED_DIR] [N1]
+#   N1: first-layer patches (default: the baker's, ~3,000 vertices each); given, the bake
+#   also uses zstd level 9 (session 46 measured --n1 1433: BENCHMARKS.md).
+# KEEP=DIR keeps the mesh and blob (~0.7 GB); VOROGEO=path runs another build of the tool.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 shared="${1:-$here/../shared}"
@@ -17,12 +17,13 @@ tool="${VOROGEO:-$here/build/tools/vorogeo}"
 if [ -n "${KEEP:-}" ]; then out="$KEEP"; mkdir -p "$out"; else out="$(mktemp -d)"; trap 'rm -rf "$out"' EXIT; fi
 mesh="$out/igea-x16.ply"
 [ -f "$mesh" ] || "$tool" subdivide "$shared/meshes/igea.ply" -o "$mesh" --rounds 2 > /dev/null
-vertices=2149490
-n1="${2:-$(( (vertices + 750) / 1500 ))}"
+n1="${2:-auto}"
+extra=()
+[ "$n1" = auto ] || extra=(--n1 "$n1" --level 9)
 blob="$out/igea-x16-n1-$n1.vgeo"
 if [ ! -f "$blob" ]; then
   /usr/bin/time -v "$tool" bake "$mesh" -o "$blob" --threads 2 --compact --hub-labels --inner-rows-at-open \
-    --n1 "$n1" --level 9 --quiet --report "$out/bake.json" 2> "$out/bake.time"
+    "${extra[@]}" --quiet --report "$out/bake.json" 2> "$out/bake.time"
 fi
 for seed in 1 2; do
   "$tool" bench "$mesh" "$blob" --runtime-only --pairs 2000 --sources 5 --seed "$seed" --json > "$out/bench$seed.json"

@@ -7,7 +7,8 @@
 # usage: scripts/bench-x16.sh [SHARED_DIR] [N1]
 #   N1: first-layer patches (default: the baker's, ~3,000 vertices each); given, the bake
 #   also uses zstd level 9 (session 46 measured --n1 1433: BENCHMARKS.md).
-# KEEP=DIR keeps the mesh and blob (~0.7 GB); VOROGEO=path runs another build of the tool.
+# KEEP=DIR keeps the mesh, the blob and its reports (~0.7 GB), and reuses a blob baked
+# there before; VOROGEO=path runs another build of the tool.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 shared="${1:-$here/../shared}"
@@ -23,26 +24,26 @@ extra=()
 blob="$out/igea-x16-n1-$n1.vgeo"
 if [ ! -f "$blob" ]; then
   /usr/bin/time -v "$tool" bake "$mesh" -o "$blob" --threads 2 --compact --hub-labels --inner-rows-at-open \
-    "${extra[@]}" --quiet --report "$out/bake.json" 2> "$out/bake.time"
+    "${extra[@]}" --quiet --report "$blob.bake.json" 2> "$blob.bake.time"
 fi
 for seed in 1 2; do
-  "$tool" bench "$mesh" "$blob" --runtime-only --pairs 2000 --sources 5 --seed "$seed" --json > "$out/bench$seed.json"
+  "$tool" bench "$mesh" "$blob" --runtime-only --pairs 2000 --sources 5 --seed "$seed" --json > "$blob.bench$seed.json"
 done
-python3 - "$out" "$n1" <<'PY'
+python3 - "$blob" "$n1" <<'PY'
 import json, os, re, sys
-out, n1 = sys.argv[1:]
+blob_path, n1 = sys.argv[1:]
 print("| igea x16 | bake | peak memory | blob | seed | p2p p50 / p99 us (thesis p50, ratio) | one-to-all ms, 1 -> 2 threads | host: fixed work p99 us |")
 print("|---|---|---|---|---:|---|---|---:|")
 print("| #7's target | 20 min | 16 GB | | | 50 / - | | |")
-bake = json.load(open(f"{out}/bake.json")) if os.path.exists(f"{out}/bake.json") else None
+bake = json.load(open(f"{blob_path}.bake.json")) if os.path.exists(f"{blob_path}.bake.json") else None
 peak = ""
-if os.path.exists(f"{out}/bake.time"):
-    m = re.search(r"Maximum resident set size \(kbytes\): (\d+)", open(f"{out}/bake.time").read())
+if os.path.exists(f"{blob_path}.bake.time"):
+    m = re.search(r"Maximum resident set size \(kbytes\): (\d+)", open(f"{blob_path}.bake.time").read())
     peak = f"{int(m.group(1)) / 1e6:.2f} GB" if m else ""
 wall = f"{bake['wall_s'] / 60:.1f} min" if bake else "(kept blob)"
 blob = f"{bake['blob_bytes'] / 1e6:.0f} MB" if bake else ""
 for seed in (1, 2):
-    b = json.load(open(f"{out}/bench{seed}.json"))
+    b = json.load(open(f"{blob_path}.bench{seed}.json"))
     print(f"| --n1 {n1} | {wall} | {peak} | {blob} | {seed} | "
           f"{b['sssd_p50_us']:.1f} / {b['sssd_p99_us']:.1f} ({b['bidirectional_sssd_p50_us']:.0f} us, "
           f"{b['bidirectional_sssd_p50_us'] / b['sssd_p50_us']:.1f}x) | "

@@ -208,20 +208,24 @@ VG_AVX2 void lowerFromRowsAvx2(const vg_graph& g, float scale, const uint64_t* r
     }
 }
 
+// Entries x .. x + 7 (quanta q) as floats into out + x, +inf for no path.
+VG_AVX2 inline void decodeStep(__m256i q, uint32_t x, __m256 scale, float* out) {
+    const __m256 e = _mm256_mul_ps(_mm256_cvtepi32_ps(q), scale);
+    const __m256i none = _mm256_cmpeq_epi32(q, _mm256_set1_epi32(int32_t(kNoPathQuantum)));
+    _mm256_storeu_ps(out + x, _mm256_blendv_ps(e, _mm256_set1_ps(__builtin_inff()), _mm256_castsi256_ps(none)));
+}
+
 VG_AVX2 bool decodeAvx2(const PackedRun& run, float scale, float* out) {
     Unpacker u = unpackerFor(run);
     if (!runFits(u, run)) return false;
-    const __m256 s = _mm256_set1_ps(scale), inf = _mm256_set1_ps(__builtin_inff());
-    const __m256i none = _mm256_set1_epi32(int32_t(kNoPathQuantum));
+    const __m256 s = _mm256_set1_ps(scale);
     for (uint32_t x = 0; x < run.n; x += 16) {
         __m256i q[2];
         unpack16(u, q);
-        // (Not the second eight past the run: a row's decoded entries end within its stride,
-        // entriesStride, so rows may be decoded in any order.)
-        for (uint32_t h = 0; h < (x + 8 < run.n ? 2u : 1u); ++h) {
-            const __m256 e = _mm256_mul_ps(_mm256_cvtepi32_ps(q[h]), s);
-            _mm256_storeu_ps(out + x + 8 * h, _mm256_blendv_ps(e, inf, _mm256_castsi256_ps(_mm256_cmpeq_epi32(q[h], none))));
-        }
+        decodeStep(q[0], x, s, out);
+        // Not the second eight past the run, as lowerRunAvx2: a row's decoded entries end
+        // within its stride (entriesStride), so rows may be decoded in any order.
+        if (x + 8 < run.n) decodeStep(q[1], x + 8, s, out);
     }
     return true;
 }

@@ -23,8 +23,13 @@ extra=()
 [ "$n1" = auto ] || extra=(--n1 "$n1" --level 9)
 blob="$out/igea-x16-n1-$n1.vgeo"
 if [ ! -f "$blob" ]; then
-  /usr/bin/time -v "$tool" bake "$mesh" -o "$blob" --threads 2 --compact --hub-labels --inner-rows-at-open \
-    "${extra[@]}" --quiet --report "$blob.bake.json" 2> "$blob.bake.time"
+  # (time's report and the bake's own messages share stderr: shown when the bake fails)
+  if ! /usr/bin/time -v "$tool" bake "$mesh" -o "$blob" --threads 2 --compact --hub-labels --inner-rows-at-open \
+    "${extra[@]}" --quiet --report "$blob.bake.json" 2> "$blob.bake.time"; then
+    cat "$blob.bake.time" >&2
+    echo "bench-x16: the bake failed (its messages above)" >&2
+    exit 1
+  fi
 fi
 for seed in 1 2; do
   "$tool" bench "$mesh" "$blob" --runtime-only --pairs 2000 --sources 5 --seed "$seed" --json > "$blob.bench$seed.json"

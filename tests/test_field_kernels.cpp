@@ -54,10 +54,12 @@ Rows randomRows(std::mt19937& rng, size_t entries) {
 
 }  // namespace
 
-TEST_CASE("field kernels: lowering from rows and decoding match a plain loop, bit for bit, in both versions",
+TEST_CASE("field kernels: lowering from rows and decoding match a plain loop, bit for bit, in every version",
           "[runtime][kernels]") {
-    const bool avx2 = vg::cpuHasAvx2();
+    const bool avx2 = vg::cpuHasAvx2(), avx512 = vg::cpuHasAvx512();
     if (!avx2) WARN("this CPU has no AVX2: only the portable kernels are checked");
+    else if (!avx512) WARN("this CPU has no AVX-512: its row kernel is not checked");
+    const int versions = avx512 ? 3 : avx2 ? 2 : 1;  // portable, AVX2, AVX-512
     std::mt19937 rng(11);
     Rows r = randomRows(rng, 2001);  // odd: the last entry ends mid-byte
     const float scale = 0.00123f;
@@ -87,11 +89,12 @@ TEST_CASE("field kernels: lowering from rows and decoding match a plain loop, bi
                     refFrom[j] = tags[i];
                 }
             }
-        for (int version = 0; version < (avx2 ? 2 : 1); ++version) {
+        for (int version = 0; version < versions; ++version) {
             std::vector<float> best = start;
             std::vector<uint32_t> from(n + vg::kRowSlack, 7777);
             std::vector<float> entries(uint64_t(count) * stride + vg::kRowSlack);
-            vg::lowerFromRows(version == 1, r.graph, scale, rows.data(), bases.data(), tags.data(), count, n, best.data(),
+            r.graph.avx512 = version == 2;
+            vg::lowerFromRows(version >= 1, r.graph, scale, rows.data(), bases.data(), tags.data(), count, n, best.data(),
                               from.data(), entries.data(), stride);
             for (uint32_t j = 0; j < n; ++j) {
                 INFO("trial " << trial << " version " << version << " slot " << j);
@@ -103,7 +106,7 @@ TEST_CASE("field kernels: lowering from rows and decoding match a plain loop, bi
                 }
             }
             std::vector<float> decoded(n + vg::kRowSlack, -1.0f);
-            vg::decodeRow(version == 1, r.graph, scale, rows[0], n, decoded.data());
+            vg::decodeRow(version >= 1, r.graph, scale, rows[0], n, decoded.data());
             // Nothing past the row's stride, where the next row's entries lie.
             for (size_t j = vg::entriesStride(n); j < decoded.size(); ++j) REQUIRE(decoded[j] == -1.0f);
             for (uint32_t j = 0; j < n; ++j) REQUIRE(sameBits(decoded[j], entries[j]));
@@ -155,7 +158,7 @@ TEST_CASE("field kernels: crossings match crossing() of vg_graph.h, bit for bit,
     }
 }
 
-TEST_CASE("field kernels: one-to-all fields are the same bits with the AVX2 and the portable kernels",
+TEST_CASE("field kernels: one-to-all fields are the same bits with the AVX2, AVX-512 and portable kernels",
           "[runtime][kernels]") {
     if (!vg::cpuHasAvx2()) {
         WARN("this CPU has no AVX2: nothing to compare");
@@ -172,17 +175,23 @@ TEST_CASE("field kernels: one-to-all fields are the same bits with the AVX2 and 
     const uint32_t V = vg_vertex_count(&graph);
     const std::vector<std::vector<uint32_t>> queries = {{0}, {V / 3}, {5, V / 2, V - 1}};
     for (const auto& sources : queries) {
-        std::vector<float> dist[2];
-        std::vector<uint32_t> nearest[2];
-        for (int version = 0; version < 2; ++version) {
-            graph.avx2 = version == 1;
+        const int versions = vg::cpuHasAvx512() ? 3 : 2;  // portable, AVX2, AVX-512
+        std::vector<float> dist[3];
+        std::vector<uint32_t> nearest[3];
+        for (int version = 0; version < versions; ++version) {
+            graph.avx2 = version >= 1;
+            graph.avx512 = version == 2;
             dist[version].resize(V);
             nearest[version].resize(V);
             REQUIRE(vg_distance_field_nearest(&graph, ws.get(), sources.data(), sources.size(), dist[version].data(),
                                               nearest[version].data()) == VG_OK);
         }
-        REQUIRE(std::memcmp(dist[0].data(), dist[1].data(), V * sizeof(float)) == 0);
-        REQUIRE(nearest[0] == nearest[1]);
+        for (int version = 1; version < versions; ++version) {
+            INFO("version " << version);
+            REQUIRE(std::memcmp(dist[0].data(), dist[version].data(), V * sizeof(float)) == 0);
+            REQUIRE(nearest[0] == nearest[version]);
+        }
     }
     graph.avx2 = true;
+    graph.avx512 = vg::cpuHasAvx512();
 }

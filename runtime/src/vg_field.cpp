@@ -148,6 +148,9 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
     const uint32_t interior = p.slotCount - p.nodeCount;
     float* best = ws.patchBest;
     uint32_t* bestNode = ws.patchBestNode;
+    // The output entries of the patch's vertices lie all over the output array, out of the
+    // cache by now: asked for here, they arrive while the rows are read.
+    for (uint32_t j = 0; j < interior; ++j) __builtin_prefetch(out + slots[p.nodeCount + j], 1);
     for (uint32_t j = 0; j < interior; ++j) {
         best[j] = __builtin_inff();
         bestNode[j] = kNone;

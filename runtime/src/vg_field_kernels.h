@@ -22,7 +22,8 @@ constexpr uint32_t kRowSlack = 16;
 // index rows[r] and at distance bases[r]; best[j] = min(best[j], bases[r] + entry) over
 // the entries with a path, and from[j] = tags[r] (r when tags is null) for the first row
 // that gives the minimum. When `entries` is not null, row r's entries (entry * scale,
-// +inf for no path) are kept at entries + r * stride as well.
+// +inf for no path) are kept at entries + r * stride as well. With `avx2` and g.avx512,
+// sixteen entries at a time (the same bits).
 void lowerFromRows(bool avx2, const vg_graph& g, float scale, const uint64_t* rows, const float* bases,
                    const uint32_t* tags, uint32_t count, uint32_t n, float* best, uint32_t* from, float* entries,
                    uint32_t stride);
@@ -55,5 +56,7 @@ void lowerByCrossings(bool avx2, const float* rows, float a, const float* c, con
 
 // True when this CPU and operating system run AVX2 code (x86-64 only).
 bool cpuHasAvx2();
+// True when they run AVX-512 (foundation) code as well.
+bool cpuHasAvx512();
 
 }  // namespace vg

@@ -84,6 +84,7 @@ struct vg_graph {
     const uint8_t* firstDistances;
     const uint8_t* firstDistancesEnd;   // one past its last byte
     bool avx2;                          // the row kernels may use AVX2 (vg_field_kernels.h)
+    bool avx512;                        // ... and lower rows with AVX-512 (only with avx2)
     // Hub labels (bake --hub-labels; vg_hub_labels.cpp); hubTreeCount == 0 when absent.
     uint32_t hubTreeCount, hubCount;
     uint32_t hubMaxPath;                // longest tree path, in hubs

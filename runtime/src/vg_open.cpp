@@ -183,6 +183,7 @@ extern "C" vg_status vg_open(const void* blob, size_t blob_size, void* memory, s
     graph->fileMapping = nullptr;
     graph->fileMappingSize = 0;
     graph->avx2 = avx2;
+    graph->avx512 = avx2 && vg::cpuHasAvx512();
     *out_graph = graph;
     return VG_OK;
 }

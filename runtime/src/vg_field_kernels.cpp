@@ -12,6 +12,7 @@
 #include <cpuid.h>
 
 #include "vg_packed_avx2.h"
+#define VG_AVX512 __attribute__((target("avx2,avx512f")))
 #else
 #define VG_FIELD_KERNELS_AVX2 0
 #endif
@@ -194,7 +195,6 @@ VG_AVX2 bool lowerRunAvx2(const PackedRun& run, float base, float scale, uint32_
 // lowerRunAvx2 sixteen entries at a time: the same operations per entry, so the same
 // bits; a lane is written only where it lowers (masked stores rather than a blend of the
 // old values), and nothing past the run.
-#define VG_AVX512 __attribute__((target("avx2,avx512f")))
 VG_AVX512 bool lowerRunAvx512(const PackedRun& run, float base, float scale, uint32_t tag, float* best, uint32_t* from,
                               float* entries) {
     Unpacker u = unpackerFor(run);
@@ -300,27 +300,38 @@ void lowerByCrossings(bool avx2, const float* rows, float a, const float* c, con
     }
 }
 
-bool cpuHasAvx512() {
 #if VG_FIELD_KERNELS_AVX2
-    unsigned a, b, c, d;
-    if (!cpuHasAvx2() || !__get_cpuid_count(7, 0, &a, &b, &c, &d) || !(b & bit_AVX512F)) return false;
+namespace {
+
+// The register states the OS saves (XCR0): bits 1-2 SSE and AVX, 5-7 AVX-512's.
+unsigned savedStates() {
     unsigned lo, hi;
     __asm__("xgetbv" : "=a"(lo), "=d"(hi) : "c"(0));
-    return (lo & 0xE0u) == 0xE0u;  // the OS saves the mask and 512-bit registers too
-#else
-    return false;
-#endif
+    return lo;
 }
+
+// The extended feature flags (CPUID leaf 7, EBX), 0 where the leaf is missing.
+unsigned extendedFeatures() {
+    unsigned a, b, c, d;
+    return __get_cpuid_count(7, 0, &a, &b, &c, &d) ? b : 0u;
+}
+
+}  // namespace
+#endif
 
 bool cpuHasAvx2() {
 #if VG_FIELD_KERNELS_AVX2
     unsigned a, b, c, d;
     if (!__get_cpuid(1, &a, &b, &c, &d) || !(c & bit_OSXSAVE) || !(c & bit_AVX)) return false;
-    unsigned lo, hi;
-    __asm__("xgetbv" : "=a"(lo), "=d"(hi) : "c"(0));  // the OS saves the YMM registers
-    if ((lo & 6u) != 6u) return false;
-    if (!__get_cpuid_count(7, 0, &a, &b, &c, &d)) return false;
-    return (b & bit_AVX2) != 0;
+    return (savedStates() & 6u) == 6u && (extendedFeatures() & bit_AVX2) != 0;
+#else
+    return false;
+#endif
+}
+
+bool cpuHasAvx512() {
+#if VG_FIELD_KERNELS_AVX2
+    return cpuHasAvx2() && (extendedFeatures() & bit_AVX512F) != 0 && (savedStates() & 0xE0u) == 0xE0u;
 #else
     return false;
 #endif

@@ -4,6 +4,7 @@
 // real bakes; a compressed (coded) blob and an uncompressed one answer with the same bits.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -357,6 +358,36 @@ TEST_CASE("distance coding: a coded blob that stores a patch edge length is refu
         CHECK_FALSE(tools::unpackBlob(blob, c, error));
         CHECK(error.find("patch edge length") != std::string::npos);
     }
+}
+
+TEST_CASE("runtime: a blob whose patch edges are not in order of their first slot is refused", "[runtime]") {
+    // The one-to-all fill finds a node slot's edges by where they start (slotFirstEdge).
+    std::vector<uint8_t> blob = bakeWith(planeGrid(12, 12, 1.0, 0.05, 3), false, false);
+    const fb::Graph* g = fb::GetGraph(blob.data() + VG_CONTAINER_HEADER_SIZE);
+    const auto* edges = g->second_edges();
+    const auto* patches = g->second_patches();
+    REQUIRE(openStatus(blob) == VG_OK);
+    // Two edges of one patch: a pair with the same first slot, and the first pair whose
+    // first slots differ.
+    uint32_t same = UINT32_MAX, differ = UINT32_MAX;
+    const uint32_t end = patches->size() > 1 ? patches->Get(1)->edge_begin() : edges->size();
+    for (uint32_t e = patches->Get(0)->edge_begin(); e + 1 < end; ++e) {
+        if (edges->Get(e)->from() == edges->Get(e + 1)->from()) same = same == UINT32_MAX ? e : same;
+        else differ = differ == UINT32_MAX ? e : differ;
+    }
+    REQUIRE(same != UINT32_MAX);
+    REQUIRE(differ != UINT32_MAX);
+    const size_t at = VG_CONTAINER_HEADER_SIZE + size_t(reinterpret_cast<const uint8_t*>(edges->Data()) -
+                                                         (blob.data() + VG_CONTAINER_HEADER_SIZE));
+    auto swapped = [&](uint32_t e) {
+        std::vector<uint8_t> b = blob;
+        uint8_t* x = b.data() + at + VG_PATCH_EDGE_BYTES * e;
+        std::swap_ranges(x, x + VG_PATCH_EDGE_BYTES, x + VG_PATCH_EDGE_BYTES);
+        resealChecksum(b);
+        return b;
+    };
+    CHECK(openStatus(swapped(same)) == VG_OK);  // still in order
+    CHECK(openStatus(swapped(differ)) == VG_ERR_CORRUPT_CONTENT);
 }
 
 TEST_CASE("distance coding: --compact needs compression", "[runtime][coding]") {

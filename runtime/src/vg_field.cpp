@@ -11,10 +11,6 @@ namespace {
 
 using namespace vg;
 
-// A source number no slot has: that of the slots that are nobody's best (kNone is that of
-// the unreached slots).
-constexpr uint32_t kNoOrigin = kNone - 1;
-
 // The path to an interior vertex may cross the border on an edge next to its best node
 // rather than at the node. The source side of each such edge (its unfolded source point)
 // is the same for every vertex of the patch, so it is computed once per edge here, for
@@ -37,50 +33,24 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws,
     for (uint32_t r = reached; r > 0; --r) memberBegin[r] = memberBegin[r - 1];  // back to the starts
     memberBegin[0] = 0;
 
-    // The edges that can give a crossing: from a node that is some vertex's best to a node
-    // reached from the same source. fromOrigin[i] is node slot i's source where it is some
-    // vertex's best, else a value no slot's source has, so that one comparison per edge
-    // tells; the edges are gathered without branches, a chunk at a time (~30% of a patch's
-    // edges pass, and a branch per edge, or per group of edges, was mispredicted often).
-    uint32_t* fromOrigin = ws.patchFromOrigin;
-    for (uint32_t i = 0; i < p.nodeCount; ++i) {
-        const uint32_t r = ws.slotEntries[i];
-        const bool best = r < reached && memberBegin[r] != memberBegin[r + 1];
-        fromOrigin[i] = best ? ws.slotOrigin[i] : kNoOrigin;
-    }
+    // Each best node's edges to nodes reached from the same source, unfolded, then its
+    // members lowered through them. A node's edges are found by where they start
+    // (slotFirstEdge), so the edges of the nodes that are nobody's best are not read.
+    const uint32_t patchEnd = patchEdgesEnd(g, patchIndex);
+    const uint32_t* firstEdge = ws.slotFirstEdge + p.slotBegin;
     CrossingEdge* edges = ws.patchEdges;
-    uint32_t* passing = ws.patchPassingEdges;
     uint32_t decoded = reached;  // rows in patchEntries: the reached nodes', then those decoded here
-    // The node whose crossing edges are being collected: its slot, reached index and distance.
-    uint32_t groupSlot = kNone, r = 0, count = 0;
-    float a = 0.0f;
-    auto lowerGroup = [&] {
-        if (groupSlot == kNone || count == 0) return;  // (no edge unfolded: nothing to lower)
-        lowerByCrossings(g.avx2, ws.patchEntries, a, ws.patchEntries + uint64_t(r) * stride, edges, count,
-                         members + memberBegin[r], memberBegin[r + 1] - memberBegin[r], ws.patchBest);
-    };
-    const uint32_t end = patchEdgesEnd(g, patchIndex);
-    for (uint32_t chunk = p.edgeBegin; chunk < end; chunk += kMaxPatchEdges) {
-        const uint32_t chunkEnd = end - chunk < kMaxPatchEdges ? end : chunk + kMaxPatchEdges;
-        uint32_t n = 0;
-        for (uint32_t e = chunk; e < chunkEnd; ++e) {
+    for (uint32_t r = 0; r < reached; ++r) {
+        if (memberBegin[r] == memberBegin[r + 1]) continue;
+        const uint32_t u = ws.patchNodeSlot[r], origin = ws.slotOrigin[u];
+        const float a = ws.patchNodeDistance[r];
+        const uint32_t end = u + 1 < p.nodeCount ? firstEdge[u + 1] : patchEnd;
+        uint32_t count = 0;
+        for (uint32_t e = firstEdge[u]; e < end && count < kMaxPatchEdges; ++e) {
             const PatchEdge& E = g.secondEdges[e];
-            passing[n] = e;
-            n += uint32_t(fromOrigin[E.from] == ws.slotOrigin[E.to]) & uint32_t(ws.slotLabel[E.to] != __builtin_inff());
-        }
-        for (uint32_t k = 0; k < n; ++k) {
-            const PatchEdge& E = g.secondEdges[passing[k]];
-            if (E.from != groupSlot) {  // the edges come grouped by their first slot
-                lowerGroup();
-                groupSlot = E.from;
-                r = ws.slotEntries[groupSlot];
-                a = ws.patchNodeDistance[r];
-                count = 0;
-            }
-            if (count == kMaxPatchEdges) continue;
             const float b = ws.slotLabel[E.to], l = E.length;
             UnfoldedPoint source;
-            if (!unfoldPoint(a, b, l, source)) continue;
+            if (ws.slotOrigin[E.to] != origin || b == __builtin_inff() || !unfoldPoint(a, b, l, source)) continue;
             if (ws.slotEntries[E.to] == kNone) {
                 ws.slotEntries[E.to] = decoded;
                 decodeRow(g.avx2, g, p.scale, interiorRowStart(p, E.to), interior,
@@ -88,8 +58,10 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws,
             }
             edges[count++] = CrossingEdge{ws.slotEntries[E.to] * stride, b, l, l * l, 0.5f / l, source};
         }
+        if (count > 0)
+            lowerByCrossings(g.avx2, ws.patchEntries, a, ws.patchEntries + uint64_t(r) * stride, edges, count,
+                             members + memberBegin[r], memberBegin[r + 1] - memberBegin[r], ws.patchBest);
     }
-    lowerGroup();
 }
 
 // The reached active nodes of patch `patchIndex` (whose labels are final once the search is

@@ -462,9 +462,10 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, const Tabl
         !membershipsValid(out.nodeFirstBegin, out.nodeFirst, count(g->node_first()), N, out.first, S1, out.slots))
         return VG_ERR_CORRUPT_CONTENT;
 
-    // Patch edges: each patch's range in order, both ends node slots of that patch, a
-    // length that unfolds (finite, not negative); in a coded blob 0, the length being
-    // computed below (vorogeo_topology_coding.h).
+    // Patch edges: each patch's range in order, both ends node slots of that patch, in
+    // order of their first slot (the fill finds a slot's edges by where they start:
+    // vg_workspace's slotFirstEdge), a length that unfolds (finite, not negative); in a
+    // coded blob 0, the length being computed below (vorogeo_topology_coding.h).
     for (uint64_t i = 0; i < S1; ++i)
         if (out.first[i].edgeBegin != 0) return VG_ERR_CORRUPT_CONTENT;
     for (uint32_t i = 0; i < S2; ++i) {
@@ -473,6 +474,7 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, const Tabl
         for (uint32_t e = begin; e < end; ++e) {
             const PatchEdge& E = out.secondEdges[e];
             if (E.from >= out.second[i].nodeCount || E.to >= out.second[i].nodeCount || E.from == E.to ||
+                (e > begin && E.from < out.secondEdges[e - 1].from) ||
                 (codedTopology ? E.length != 0.0f : !finite(E.length) || E.length < 0.0f))
                 return VG_ERR_CORRUPT_CONTENT;
         }

@@ -243,8 +243,7 @@ struct vg_workspace {
     float* slotLabel;              // per node slot of one patch: its label (+inf: none, or merged away)
     uint32_t* slotOrigin;          // ... and the source it came from
     vg::CrossingEdge* patchEdges;  // one node's crossing edges
-    uint32_t* patchFromOrigin;     // per node slot of one patch: its source if it is some vertex's best
-    uint32_t* patchPassingEdges;   // a chunk of a patch's edges that may give crossings
+    uint32_t* slotFirstEdge;       // per second-layer node slot: its first patch edge (filled at init)
     uint32_t* patchMemberBegin;    // per reached node of one patch: first interior slot it is best for ...
     uint32_t* patchMembers;        // ... in these lists
     uint32_t* slotEntries;         // per node slot of one patch: its row in patchEntries, else kNone

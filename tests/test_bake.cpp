@@ -131,7 +131,8 @@ TEST_CASE("bake: blob passes the container checks and the flatbuffers verifier, 
     CHECK(g->second_distances()->size() == (secondEntries * 3 + 1) / 2);
 
     // Patch edges: exactly the node edges with both ends among a patch's nodes, both ways,
-    // grouped by their first slot, with the float length of the stored positions.
+    // in order of their first slot (the runtime refuses any other), with the float length of
+    // the stored positions.
     const auto* edges = g->second_edges();
     REQUIRE(edges != nullptr);
     uint64_t expectedEdges = 0;

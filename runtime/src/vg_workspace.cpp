@@ -276,7 +276,7 @@ void fillHubPatchReach(const vg_graph& g, float* reach) {
 // (vg_validate.cpp), so a slot's edges run to the next slot's first, and the last slot's
 // to the patch's end. The fill then reads only the edges of the nodes that are some
 // vertex's best instead of scanning all of a patch's (igea's field on one thread:
-// 1.02-1.09x, BENCHMARKS.md).
+// 1.07x, BENCHMARKS.md).
 void fillSlotFirstEdges(const vg_graph& g, uint32_t* first) {
     for (uint32_t i = 0; i < g.secondCount; ++i) {
         const vg::Patch& p = g.second[i];

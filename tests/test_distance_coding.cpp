@@ -372,13 +372,12 @@ TEST_CASE("runtime: a blob whose patch edges are not in order of their first slo
     uint32_t same = UINT32_MAX, differ = UINT32_MAX;
     const uint32_t end = patches->size() > 1 ? patches->Get(1)->edge_begin() : edges->size();
     for (uint32_t e = patches->Get(0)->edge_begin(); e + 1 < end; ++e) {
-        if (edges->Get(e)->from() == edges->Get(e + 1)->from()) same = same == UINT32_MAX ? e : same;
-        else differ = differ == UINT32_MAX ? e : differ;
+        uint32_t& first = edges->Get(e)->from() == edges->Get(e + 1)->from() ? same : differ;
+        if (first == UINT32_MAX) first = e;
     }
     REQUIRE(same != UINT32_MAX);
     REQUIRE(differ != UINT32_MAX);
-    const size_t at = VG_CONTAINER_HEADER_SIZE + size_t(reinterpret_cast<const uint8_t*>(edges->Data()) -
-                                                         (blob.data() + VG_CONTAINER_HEADER_SIZE));
+    const size_t at = size_t(reinterpret_cast<const uint8_t*>(edges->Data()) - blob.data());
     auto swapped = [&](uint32_t e) {
         std::vector<uint8_t> b = blob;
         uint8_t* x = b.data() + at + VG_PATCH_EDGE_BYTES * e;

@@ -50,7 +50,8 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws,
             const PatchEdge& E = g.secondEdges[e];
             const float b = ws.slotLabel[E.to], l = E.length;
             UnfoldedPoint source;
-            if (ws.slotOrigin[E.to] != origin || b == __builtin_inff() || !unfoldPoint(a, b, l, source)) continue;
+            // (An unlabelled node has no source: kNone, unlike any best node's.)
+            if (ws.slotOrigin[E.to] != origin || !unfoldPoint(a, b, l, source)) continue;
             if (ws.slotEntries[E.to] == kNone) {
                 ws.slotEntries[E.to] = decoded;
                 decodeRow(g.avx2, g, p.scale, interiorRowStart(p, E.to), interior,

@@ -11,6 +11,16 @@ namespace {
 
 using namespace vg;
 
+// The search's labels as the fill reads them: per second-layer node slot (slotBegin-based,
+// vg_workspace.h's slotDist), so that a patch's come from a few consecutive lines instead of
+// a line per node.
+struct SlotLabels {
+    const float* dist;        // +inf: none; -inf: a merged-away node
+    const uint32_t* source;   // its nearest source
+    const uint8_t* through;   // 1 where it came through this patch's own row
+    explicit SlotLabels(const vg_workspace& ws) : dist(ws.slotDist), source(ws.slotSource), through(ws.slotThrough) {}
+};
+
 // The path to an interior vertex may cross the border on an edge next to its best node
 // rather than at the node. The source side of each such edge (its unfolded source point)
 // is the same for every vertex of the patch, so it is computed once per edge here, for
@@ -68,20 +78,22 @@ void unfoldAtBestNodes(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws,
 // The reached active nodes of patch `patchIndex` (whose labels are final once the search is
 // done) into the workspace's per-patch lists (patchNodeSlot, patchNodeDistance,
 // patchNodeRow, slotEntries) and the labels and sources of all its node slots (slotLabel,
-// slotOrigin, read once: the search left them all over the label array); their number.
-uint32_t reachedNodes(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_workspace& ws) {
+// slotOrigin); their number.
+uint32_t reachedNodes(const vg_graph& g, uint32_t patchIndex, const SlotLabels& labels, vg_workspace& ws) {
     const Patch& p = g.second[patchIndex];
-    const uint32_t* slots = g.slots + p.slotBegin;
+    const float* dist = labels.dist + p.slotBegin;
+    const uint32_t* source = labels.source + p.slotBegin;
+    const uint8_t* through = labels.through + p.slotBegin;
     uint32_t reached = 0;
     for (uint32_t i = 0; i < p.nodeCount; ++i) {
-        const uint32_t n = slots[i];
-        const bool usable = nodeActive(g, n) && f.labelled(n);
-        ws.slotLabel[i] = usable ? f.label[n].dist : __builtin_inff();
-        ws.slotOrigin[i] = usable ? f.route[n].origin : kNone;
+        const float d = dist[i];
+        const bool usable = d < __builtin_inff() && d > -__builtin_inff();  // labelled, active
+        ws.slotLabel[i] = usable ? d : __builtin_inff();
+        ws.slotOrigin[i] = usable ? source[i] : kNone;
         ws.slotEntries[i] = kNone;
         // A node labelled through this patch's own row is no better start than the node
         // it came from (patch distances obey the triangle inequality): skip it.
-        if (usable && f.route[n].via != patchIndex) {
+        if (usable && !through[i]) {
             ws.patchNodeSlot[reached] = i;
             ws.slotEntries[i] = reached;
             ws.patchNodeDistance[reached] = ws.slotLabel[i];
@@ -122,7 +134,7 @@ void fillMergedAwayFrom(const vg_graph& g, uint32_t patchIndex, const vg_workspa
 
 // Vertices of one patch that are not active nodes: best over its reached active nodes.
 // `mergedAway` false leaves its merged-away nodes (which other patches share) to the caller.
-void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_workspace& ws, float* out,
+void fillPatch(const vg_graph& g, uint32_t patchIndex, const SlotLabels& labels, vg_workspace& ws, float* out,
                uint32_t* nearest, bool mergedAway) {
     const Patch& p = g.second[patchIndex];
     const uint32_t* slots = g.slots + p.slotBegin;
@@ -136,7 +148,7 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
         best[j] = __builtin_inff();
         bestNode[j] = kNone;
     }
-    const uint32_t reached = reachedNodes(g, patchIndex, f, ws);
+    const uint32_t reached = reachedNodes(g, patchIndex, labels, ws);
     // The crossings read the patch's edge list and edge index a node at a time, each read
     // waiting for its own line: asked for here, they arrive while the rows are lowered
     // (igea's field: 1.05x on one thread, 1.04x on two, BENCHMARKS.md).
@@ -156,10 +168,11 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const Frontier& f, vg_wor
 }
 
 // The merged-away nodes of every patch, in patch order (after a fill that left them).
-void fillMergedAway(const vg_graph& g, const Frontier& f, vg_workspace& ws, float* out, uint32_t* nearest) {
+void fillMergedAway(const vg_graph& g, vg_workspace& ws, float* out, uint32_t* nearest) {
+    const SlotLabels labels(ws);
     for (uint32_t i = 0; i < g.secondCount; ++i)
         if (ws.parallel.activeNodes[i] < g.second[i].nodeCount)
-            fillMergedAwayFrom(g, i, ws, reachedNodes(g, i, f, ws), out, nearest);
+            fillMergedAwayFrom(g, i, ws, reachedNodes(g, i, labels, ws), out, nearest);
 }
 
 // The search's distances of the nodes, a chunk per step (each node once, at its own vertex).
@@ -182,13 +195,17 @@ void writeNodes(const vg_graph& g, const Frontier& f, uint32_t first, float* out
 // drops later; the labels end at the same shortest paths, up to the 12-bit rounding of
 // the entries, and an igea field is 1.13-1.27x faster, BENCHMARKS.md).
 
-// Node v's label became d through patch `via` (kNone: a seed): every other patch of v must
-// relax it; `via` need not, as its own row gave it (patch distances obey the triangle
-// inequality).
-inline void announce(const vg_graph& g, vg_workspace& ws, uint32_t v, float d, uint32_t via) {
+// Active node v's label became d, from source `source`, through patch `via` (kNone: a
+// seed): each of v's slots takes it (where its patch's visit and fill read it), and every
+// other patch of v must relax it; `via` need not, as its own row gave it (patch distances
+// obey the triangle inequality).
+inline void announce(const vg_graph& g, vg_workspace& ws, uint32_t v, float d, uint32_t source, uint32_t via) {
     for (uint32_t m = g.nodeSecondBegin[v]; m < g.nodeSecondBegin[v + 1]; ++m) {
-        const uint32_t patch = g.nodeSecond[m].patch;
-        if (patch == via) ws.slotSent[g.second[patch].slotBegin + g.nodeSecond[m].slot] = d;
+        const uint32_t patch = g.nodeSecond[m].patch, k = g.second[patch].slotBegin + g.nodeSecond[m].slot;
+        ws.slotDist[k] = d;
+        ws.slotSource[k] = source;
+        ws.slotThrough[k] = patch == via;
+        if (patch == via) ws.slotSent[k] = d;
         else ws.patchQueue.offer(patch, d);
     }
 }
@@ -197,16 +214,14 @@ inline void announce(const vg_graph& g, vg_workspace& ws, uint32_t v, float d, u
 // has its first label: each of its patches counts it, and a patch whose active nodes now
 // all have labels waits in `pending` under the largest (labels only drop, so a key that
 // is no longer the largest is still an upper bound of it).
-void countLabelled(const vg_graph& g, ParallelFill& P, const Frontier& f, uint32_t v) {
+void countLabelled(const vg_graph& g, ParallelFill& P, const vg_workspace& ws, uint32_t v) {
     for (uint32_t m = g.nodeSecondBegin[v]; m < g.nodeSecondBegin[v + 1]; ++m) {
         const uint32_t patch = g.nodeSecond[m].patch;
         if (++P.labelledNodes[patch] != P.activeNodes[patch]) continue;
         const Patch& p = g.second[patch];
-        float largest = 0.0f;
-        for (uint32_t j = 0; j < p.nodeCount; ++j) {
-            const uint32_t n = g.slots[p.slotBegin + j];
-            if (nodeActive(g, n) && f.label[n].dist > largest) largest = f.label[n].dist;
-        }
+        float largest = 0.0f;  // (a merged-away slot's -inf is never the largest)
+        for (uint32_t j = 0; j < p.nodeCount; ++j)
+            if (ws.slotDist[p.slotBegin + j] > largest) largest = ws.slotDist[p.slotBegin + j];
         heapSiftUp(P.pending, P.pendingCount++, HeapEntry{largest, patch}, [&](uint32_t i, HeapEntry e) { P.pending[i] = e; });
     }
 }
@@ -237,14 +252,22 @@ void beginPatchSearch(const vg_graph& g, vg_workspace& ws, ParallelFill* P) {
     for (uint32_t i = 0; i < g.secondCount; ++i) {
         ws.patchQueue.position[i] = kNone;
         const Patch& p = g.second[i];
-        for (uint32_t j = 0; j < p.nodeCount; ++j) ws.slotSent[p.slotBegin + j] = __builtin_inff();
+        for (uint32_t k = p.slotBegin; k < p.slotBegin + p.nodeCount; ++k) ws.slotSent[k] = ws.slotDist[k] = ws.slotBlank[k];
     }
     ws.patchQueue.size = 0;
     Frontier& f = ws.forward;
     while (!f.empty()) {
         const uint32_t u = f.pop().node;
-        announce(g, ws, u, f.label[u].dist, f.route[u].via);
-        if (P != nullptr && nodeActive(g, u)) countLabelled(g, *P, f, u);
+        const Route& r = f.route[u];
+        if (nodeActive(g, u)) {
+            announce(g, ws, u, f.label[u].dist, r.origin, r.via);
+            if (P != nullptr) countLabelled(g, *P, ws, u);
+        } else {
+            // A merged-away seed takes no label in the search (its patches' fills give it
+            // one), but its patches' nodes take labels from its rows.
+            for (uint32_t m = g.nodeSecondBegin[u]; m < g.nodeSecondBegin[u + 1]; ++m)
+                if (g.nodeSecond[m].patch != r.via) ws.patchQueue.offer(g.nodeSecond[m].patch, f.label[u].dist);
+        }
     }
 }
 
@@ -257,7 +280,8 @@ void visitPatch(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws, Parall
     const Patch& p = g.second[patchIndex];
     const uint32_t n = p.nodeCount;
     const uint32_t* slots = g.slots + p.slotBegin;
-    float* sent = ws.slotSent + p.slotBegin;
+    const float* dist = ws.slotDist + p.slotBegin;  // (-inf: merged away; it never takes a label)
+    float* sent = ws.slotSent + p.slotBegin;        // (-inf there too: it is never a source)
     float* best = ws.patchBest;            // per node slot: the best found here
     uint32_t* from = ws.patchBestNode;     // ... and the source slot whose row gave it
     uint32_t* sources = ws.patchNodeSlot;  // the sources' slots, labels and rows
@@ -265,15 +289,13 @@ void visitPatch(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws, Parall
     uint64_t* rows = ws.patchNodeRow;
     uint32_t sourceCount = 0;
     for (uint32_t j = 0; j < n; ++j) {
-        const uint32_t v = slots[j];
-        const bool active = nodeActive(g, v), labelled = f.labelled(v);
-        const float label = labelled ? f.label[v].dist : __builtin_inff();
+        const float label = dist[j];
         // Where its label drops, announce reads the node's patch list, far from the last
         // one read: asked for now, while the rows are read (igea's field: 1.03x).
-        __builtin_prefetch(g.nodeSecond + g.nodeSecondBegin[v]);
-        best[j] = active ? label : -__builtin_inff();  // a merged-away node never takes a label
+        __builtin_prefetch(g.nodeSecond + g.nodeSecondBegin[slots[j]]);
+        best[j] = label;
         from[j] = kNone;
-        if (active && labelled && label < sent[j]) {
+        if (label < sent[j]) {
             sent[j] = label;
             sources[sourceCount] = j;
             labels[sourceCount] = label;
@@ -283,12 +305,12 @@ void visitPatch(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws, Parall
     lowerFromRows(g.avx2, g, p.scale, rows, labels, sources, sourceCount, n, best, from, nullptr, 0);
     for (uint32_t j = 0; j < n; ++j) {
         if (from[j] == kNone) continue;
-        const uint32_t v = slots[j], u = slots[from[j]];
-        const bool first = !f.labelled(v);
+        const uint32_t v = slots[j], u = slots[from[j]], source = ws.slotSource[p.slotBegin + from[j]];
+        const bool first = !(dist[j] < __builtin_inff());  // (before announce writes it)
         f.label[v] = Label{best[j], f.generation};
-        f.route[v] = Route{patchIndex, kNone, f.route[u].origin, u};
-        announce(g, ws, v, best[j], patchIndex);
-        if (P != nullptr && first) countLabelled(g, *P, f, v);
+        f.route[v] = Route{patchIndex, kNone, source, u};
+        announce(g, ws, v, best[j], source, patchIndex);
+        if (P != nullptr && first) countLabelled(g, *P, ws, v);
     }
 }
 
@@ -393,7 +415,7 @@ bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget, uint32_t
         } else if (s.phase == Fill) {
             if (s.next < g.secondCount) {
                 if (s.next + 1 < g.secondCount) prefetchFillBlock(g, s.next + 1);
-                fillPatch(g, s.next++, F, ws, out, nearest, true);
+                fillPatch(g, s.next++, SlotLabels(ws), ws, out, nearest, true);
                 continue;
             }
             s.phase = Direct;
@@ -485,7 +507,7 @@ void fieldTask(void* context, uint32_t) {
     if (arrival == 0) searchPublishing(g, query);
     // What the fill reads of the query's workspace, copied once: the search goes on writing
     // next to it.
-    const Frontier labels = query.forward;
+    const SlotLabels labels(query);
     float* const out = query.slice.out;
     uint32_t* const nearest = query.slice.nearest;
     const uint32_t* const ready = P.readyPatches;
@@ -529,7 +551,7 @@ vg_status fieldParallel(const vg_graph* graph, vg_workspace* const* workspaces, 
     for (uint32_t i = 1; i < workspace_count; ++i) beginQuery(*workspaces[i]);  // ends their sliced queries
     FieldTasks tasks{graph, workspaces, workspace_count};
     (parallel_for != nullptr ? parallel_for : runInTurn)(user_context, workspace_count, fieldTask, &tasks);
-    fillMergedAway(g, ws.forward, ws, out_distances, out_nearest);
+    fillMergedAway(g, ws, out_distances, out_nearest);
     ws.slice.phase = Direct;
     ws.slice.next = 0;
     advanceField(g, ws, ~uint64_t(0));

@@ -93,6 +93,10 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.patchQueue.heap = L.take<vg::HeapEntry>(g.secondCount);
     o.patchQueue.size = 0;
     o.slotSent = L.take<float>(secondNodeSlotEnd(g));
+    o.slotDist = L.take<float>(secondNodeSlotEnd(g));
+    o.slotSource = L.take<uint32_t>(secondNodeSlotEnd(g));
+    o.slotThrough = L.take<uint8_t>(secondNodeSlotEnd(g));
+    o.slotBlank = L.take<float>(secondNodeSlotEnd(g));
     o.parallel.activeNodes = L.take<uint32_t>(g.secondCount);
     o.parallel.labelledNodes = L.take<uint32_t>(g.secondCount);
     o.parallel.readyPatches = L.take<uint32_t>(g.secondCount);
@@ -368,7 +372,11 @@ extern "C" vg_status vg_workspace_init(const vg_graph* graph, void* memory, size
     for (uint32_t i = 0; i < graph->secondCount; ++i) {
         const vg::Patch& p = graph->second[i];
         uint32_t active = 0;
-        for (uint32_t j = 0; j < p.nodeCount; ++j) active += vg::nodeActive(*graph, graph->slots[p.slotBegin + j]) ? 1 : 0;
+        for (uint32_t j = 0; j < p.nodeCount; ++j) {
+            const bool on = vg::nodeActive(*graph, graph->slots[p.slotBegin + j]);
+            ws->slotBlank[p.slotBegin + j] = on ? __builtin_inff() : -__builtin_inff();
+            active += on ? 1 : 0;
+        }
         ws->parallel.activeNodes[i] = active;
     }
     ws->searchMode = VG_SEARCH_HUB_LABELS;

@@ -249,7 +249,13 @@ struct vg_workspace {
     uint32_t* slotEntries;         // per node slot of one patch: its row in patchEntries, else kNone
     float* patchEntries;           // node rows over a patch's interior slots, decoded (entriesStride apart)
     vg::PatchQueue patchQueue;     // one-to-all search: patches with news ...
-    float* slotSent;               // ... and per node slot: the label last relaxed through that patch
+    float* slotSent;               // ... and per node slot: the label last relaxed through that patch,
+    float* slotDist;               // ... its node's label (+inf: none yet), which announce writes to
+                                   //     all the node's slots so that a visit or fill reads a patch's
+                                   //     labels from consecutive lines (-inf in both: merged away),
+    uint32_t* slotSource;          // ... the label's source,
+    uint8_t* slotThrough;          // ... 1 where it came through this patch's own row,
+    float* slotBlank;              // ... and what slotSent and slotDist start a query at (at init)
     vg::ParallelFill parallel;     // vg_distance_field_parallel, on the query's workspace
     vg::Endpoint* targetEndpoints; // kTargetChunk resolved targets (vg_point_k_nearest)
     uint32_t* pathNodes;           // N + 1: a node chain being read off (vg_path)

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <thread>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "bake.h"
 #include "blob_test_helpers.h"
 #include "generators.h"
+#include "mesh_io.h"
 #include "runtime_graph.h"
 #include "vorogeo.h"
 
@@ -93,6 +95,72 @@ TEST_CASE("runtime: a one-to-all query on several threads gives the one-thread b
                                                        &s) == VG_OK);
                     CHECK(std::memcmp(got.data(), expected.data(), V * sizeof(float)) == 0);
                 }
+            }
+        }
+    }
+}
+
+TEST_CASE("runtime: one-to-all writes every output entry whatever the buffers held", "[runtime][parallel]") {
+    // The outputs start uninitialised except at unused vertices: writeNodes writes every
+    // node's vertex (unreached ones at +inf) and each patch its interior vertices. Two
+    // components, a vertex used by no face and a pruned graph (merged-away nodes) cover
+    // what no search reaches.
+    Mesh mesh = twoComponents();
+    mesh.positions.push_back({7.0, 7.0, 7.0});
+    REQUIRE(prepareMesh("two+1", LoadOptions(), mesh).ok);
+    const uint32_t lonely = mesh.vertexCount() - 1;
+    for (const double delta : {0.0, 0.03}) {
+        INFO("delta " << delta);
+        BakeOptions o;
+        o.delta = delta;
+        BakeReport report;
+        RuntimeGraph g = openOrFail(bakeMesh(mesh, o, report, nullptr));
+        if (delta > 0) REQUIRE(report.secondPrune.prunedNodes > 0);
+        const vg_graph* graph = g.graph();
+        const uint32_t V = g.vertexCount();
+        REQUIRE(V == mesh.vertexCount());
+        RuntimeWorkspace a(graph), b(graph);
+        vg_workspace* both[2] = {a.get(), b.get()};
+        const uint32_t sources[2] = {0, 3};
+        std::vector<float> reference;
+        std::vector<uint32_t> referenceNearest;
+        for (const int how : {0, 1, 2}) {  // one thread, two on threads, sliced
+            for (const uint32_t fill : {0x7FC00001u, 0u, 0xDEADBEEFu}) {  // a NaN, zero, garbage
+                INFO("query " << how << ", buffers held " << std::hex << fill);
+                float fillValue;
+                std::memcpy(&fillValue, &fill, sizeof fillValue);
+                std::vector<float> out(V, fillValue);
+                std::vector<uint32_t> nearest(V, fill);
+                if (how == 0) {
+                    REQUIRE(vg_distance_field_nearest(graph, a.get(), sources, 2, out.data(), nearest.data()) == VG_OK);
+                } else if (how == 1) {
+                    Scheduler s;
+                    REQUIRE(vg_distance_field_parallel(graph, both, 2, sources, 2, out.data(), nearest.data(), runTasks,
+                                                       &s) == VG_OK);
+                } else {
+                    REQUIRE(vg_distance_field_begin(graph, a.get(), sources, 2, out.data(), nearest.data()) == VG_OK);
+                    int done = 0;
+                    while (!done) REQUIRE(vg_distance_field_step(graph, a.get(), 5, &done) == VG_OK);
+                }
+                uint32_t reached = 0, unreached = 0;
+                for (uint32_t v = 0; v < V; ++v) {
+                    INFO("vertex " << v);
+                    const bool finite = std::isfinite(out[v]);
+                    REQUIRE((finite || (std::isinf(out[v]) && out[v] > 0)));
+                    REQUIRE(nearest[v] == (finite ? nearest[v] : 2u));
+                    REQUIRE((!finite || nearest[v] < 2));
+                    (finite ? reached : unreached)++;
+                }
+                CHECK(std::isinf(out[lonely]));
+                CHECK(nearest[lonely] == 2);
+                CHECK(reached > V / 4);
+                CHECK(unreached > V / 4);  // the other component
+                if (reference.empty()) {
+                    reference = out;
+                    referenceNearest = nearest;
+                }
+                CHECK(std::memcmp(out.data(), reference.data(), V * sizeof(float)) == 0);
+                CHECK(nearest == referenceNearest);
             }
         }
     }

@@ -135,7 +135,7 @@ void fillMergedAwayFrom(const vg_graph& g, uint32_t patchIndex, const vg_workspa
 // Vertices of one patch that are not active nodes: best over its reached active nodes.
 // `mergedAway` false leaves its merged-away nodes (which other patches share) to the caller.
 void fillPatch(const vg_graph& g, uint32_t patchIndex, const SlotLabels& labels, vg_workspace& ws, float* out,
-               uint32_t* nearest, bool mergedAway) {
+               uint32_t* nearest, uint32_t noSource, bool mergedAway) {
     const Patch& p = g.second[patchIndex];
     const uint32_t* slots = g.slots + p.slotBegin;
     const uint32_t interior = p.slotCount - p.nodeCount;
@@ -158,12 +158,12 @@ void fillPatch(const vg_graph& g, uint32_t patchIndex, const SlotLabels& labels,
     lowerFromRows(g.avx2, g, p.scale, ws.patchNodeRow, ws.patchNodeDistance, nullptr, reached, interior, best,
                   bestNode, ws.patchEntries, entriesStride(interior));
     unfoldAtBestNodes(g, patchIndex, ws, reached);
+    // This patch is the only one to write its interior vertices (vg_open checks it), and
+    // nothing wrote them before.
     for (uint32_t j = 0; j < interior; ++j) {
         const uint32_t v = slots[p.nodeCount + j];
-        if (best[j] < out[v]) {
-            out[v] = best[j];
-            if (nearest) nearest[v] = ws.slotOrigin[ws.patchNodeSlot[bestNode[j]]];
-        }
+        out[v] = best[j];
+        if (nearest) nearest[v] = bestNode[j] != kNone ? ws.slotOrigin[ws.patchNodeSlot[bestNode[j]]] : noSource;
     }
 }
 
@@ -178,12 +178,15 @@ void fillMergedAway(const vg_graph& g, vg_workspace& ws, float* out, uint32_t* n
 // The search's distances of the nodes, a chunk per step (each node once, at its own vertex).
 constexpr uint32_t kNodesPerStep = 256;
 
-void writeNodes(const vg_graph& g, const Frontier& f, uint32_t first, float* out, uint32_t* nearest) {
+// A node without a label (unreached, or merged away: the fills give it its distance) starts
+// at +inf and no source, as beginField leaves the nodes' vertices to this.
+void writeNodes(const vg_graph& g, const Frontier& f, uint32_t first, float* out, uint32_t* nearest,
+                uint32_t noSource) {
     const uint32_t end = g.nodeCount - first < kNodesPerStep ? g.nodeCount : first + kNodesPerStep;
     for (uint32_t n = first; n < end; ++n) {
-        if (!nodeActive(g, n) || !f.labelled(n)) continue;
-        out[g.nodeVertex[n]] = f.label[n].dist;
-        if (nearest) nearest[g.nodeVertex[n]] = f.route[n].origin;
+        const bool labelled = nodeActive(g, n) && f.labelled(n);
+        out[g.nodeVertex[n]] = labelled ? f.label[n].dist : __builtin_inff();
+        if (nearest) nearest[g.nodeVertex[n]] = labelled ? f.route[n].origin : noSource;
     }
 }
 
@@ -369,10 +372,16 @@ vg_status beginField(const vg_graph* graph, vg_workspace* workspace, const uint3
 
     vg_workspace& ws = *workspace;
     const uint32_t gen = beginQuery(ws);
-    const float inf = __builtin_inff();
-    for (uint32_t v = 0; v < g.vertexCount; ++v) out_distances[v] = inf;
-    if (out_nearest)
-        for (uint32_t v = 0; v < g.vertexCount; ++v) out_nearest[v] = uint32_t(source_count);
+    // Only the vertices that no step writes start here: writeNodes writes every node's
+    // vertex, and its home patch's fill every other used vertex (vg_open checks that these
+    // are all, each once). So the calling thread does not take every line of the outputs
+    // only for the fill tasks to take them back (igea's field on two threads: 1.03x).
+    if (g.unusedVertexCount > 0)
+        for (uint32_t v = 0; v < g.vertexCount; ++v) {
+            if (g.vertexPatch[v] != kNone) continue;
+            out_distances[v] = __builtin_inff();
+            if (out_nearest) out_nearest[v] = uint32_t(source_count);
+        }
     ws.slice = FieldSlice{gen, Search, 0, points ? nullptr : sources, points, source_count, out_distances, out_nearest};
     auto key = [](uint32_t, float dv) { return dv; };
     auto none = [](uint32_t, float) {};
@@ -406,7 +415,7 @@ bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget, uint32_t
             s.next = 0;
         } else if (s.phase == Nodes) {
             if (s.next < g.nodeCount) {
-                writeNodes(g, F, s.next, out, nearest);
+                writeNodes(g, F, s.next, out, nearest, uint32_t(s.sourceCount));
                 s.next += kNodesPerStep;
                 continue;
             }
@@ -415,7 +424,7 @@ bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget, uint32_t
         } else if (s.phase == Fill) {
             if (s.next < g.secondCount) {
                 if (s.next + 1 < g.secondCount) prefetchFillBlock(g, s.next + 1);
-                fillPatch(g, s.next++, SlotLabels(ws), ws, out, nearest, true);
+                fillPatch(g, s.next++, SlotLabels(ws), ws, out, nearest, uint32_t(s.sourceCount), true);
                 continue;
             }
             s.phase = Direct;
@@ -482,7 +491,7 @@ void searchPublishing(const vg_graph& g, vg_workspace& ws) {
         visitNextPatch(g, ws, &P);
     }
     for (uint32_t first = 0; first < g.nodeCount; first += kNodesPerStep)
-        writeNodes(g, ws.forward, first, ws.slice.out, ws.slice.nearest);
+        writeNodes(g, ws.forward, first, ws.slice.out, ws.slice.nearest, uint32_t(ws.slice.sourceCount));
     uint32_t length = P.readyCount;
     for (uint32_t i = 0; i < g.secondCount; ++i)
         if (P.labelledNodes[i] != kNone) markReady(P, i, length);
@@ -510,6 +519,7 @@ void fieldTask(void* context, uint32_t) {
     const SlotLabels labels(query);
     float* const out = query.slice.out;
     uint32_t* const nearest = query.slice.nearest;
+    const uint32_t noSource = uint32_t(query.slice.sourceCount);
     const uint32_t* const ready = P.readyPatches;
     const uint32_t total = g.secondCount;
     uint32_t next = __atomic_fetch_add(&P.claimed, 1u, __ATOMIC_RELAXED);
@@ -519,7 +529,7 @@ void fieldTask(void* context, uint32_t) {
         next = __atomic_fetch_add(&P.claimed, 1u, __ATOMIC_RELAXED);
         const bool more = next < total;
         if (more && __atomic_load_n(&P.published, __ATOMIC_ACQUIRE) > next) prefetchFillBlock(g, ready[next]);
-        fillPatch(g, patch, labels, scratch, out, nearest, false);
+        fillPatch(g, patch, labels, scratch, out, nearest, noSource, false);
         patch = more ? readyPatch(P, next) : kNone;
     }
 }

@@ -56,6 +56,7 @@ struct vg_graph {
     float bboxDiagonal;
     const float* positions;          // 3 per vertex
     const uint32_t* vertexPatch;     // home second-layer patch, kNone when unused
+    uint32_t unusedVertexCount;      // vertices with no home patch (used by no face)
     const uint16_t* vertexSlot;
     uint32_t faceCount;
     const uint32_t* faceVertices;    // 3 per face; half-edge h = 3f + k runs faceVertices[h] -> next corner

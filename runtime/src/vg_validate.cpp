@@ -490,9 +490,13 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, const Tabl
     }
 
     // Vertices: the home slot holds the vertex (as itself, or as its node).
+    out.unusedVertexCount = 0;
     for (uint64_t v = 0; v < V; ++v) {
         const uint32_t patch = out.vertexPatch[v];
-        if (patch == kNone) continue;
+        if (patch == kNone) {
+            ++out.unusedVertexCount;
+            continue;
+        }
         if (patch >= S2) return VG_ERR_CORRUPT_CONTENT;
         const Patch& p = out.second[patch];
         const uint32_t slot = out.vertexSlot[v];
@@ -500,14 +504,21 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, const Tabl
         const uint32_t id = out.slots[p.slotBegin + slot];
         if (slot < p.nodeCount ? out.nodeVertex[id] != v : id != v) return VG_ERR_CORRUPT_CONTENT;
     }
-    // Every slot's vertex is a used vertex (so that its component is defined).
+    // Every slot's vertex is a used vertex (so that its component is defined), an interior
+    // slot only in its vertex's home patch and a node's vertex never in an interior slot:
+    // one-to-all writes each interior vertex once, from its home patch, without comparing.
     for (uint64_t i = 0; i < S2; ++i) {
         const Patch& p = out.second[i];
-        for (uint32_t s = p.nodeCount; s < p.slotCount; ++s)
-            if (out.vertexPatch[out.slots[p.slotBegin + s]] == kNone) return VG_ERR_CORRUPT_CONTENT;
+        for (uint32_t s = p.nodeCount; s < p.slotCount; ++s) {
+            const uint32_t v = out.slots[p.slotBegin + s];
+            if (out.vertexPatch[v] != i || out.vertexSlot[v] != s) return VG_ERR_CORRUPT_CONTENT;
+        }
     }
-    for (uint64_t n = 0; n < N; ++n)
-        if (out.vertexPatch[out.nodeVertex[n]] == kNone) return VG_ERR_CORRUPT_CONTENT;
+    for (uint64_t n = 0; n < N; ++n) {
+        const uint32_t v = out.nodeVertex[n];
+        if (out.vertexPatch[v] == kNone || out.vertexSlot[v] >= out.second[out.vertexPatch[v]].nodeCount)
+            return VG_ERR_CORRUPT_CONTENT;
+    }
 
     if (codedTopology) {
         vg_code_topology(const_cast<uint32_t*>(out.faceVertices), const_cast<uint32_t*>(out.faceTwin),

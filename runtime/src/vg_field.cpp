@@ -482,21 +482,22 @@ inline void pause() {
 #endif
 }
 
-// The search to its end, with the nodes' own distances; then every patch not yet ready
-// (unreached nodes, or still pending) becomes so.
+// The search to its end; then every patch not yet ready (unreached nodes, or still
+// pending) becomes so, and the nodes' own distances are written.
 void searchPublishing(const vg_graph& g, vg_workspace& ws) {
     ParallelFill& P = ws.parallel;
     while (!ws.patchQueue.empty()) {
         publishFinal(P, ws.patchQueue.heap[0].key);
         visitNextPatch(g, ws, &P);
     }
-    for (uint32_t first = 0; first < g.nodeCount; first += kNodesPerStep)
-        writeNodes(g, ws.forward, first, ws.slice.out, ws.slice.nearest, uint32_t(ws.slice.sourceCount));
     uint32_t length = P.readyCount;
     for (uint32_t i = 0; i < g.secondCount; ++i)
         if (P.labelledNodes[i] != kNone) markReady(P, i, length);
     P.readyCount = length;
     __atomic_store_n(&P.published, length, __ATOMIC_RELEASE);
+    // (The nodes' entries after that, so that no task waits for them.)
+    for (uint32_t first = 0; first < g.nodeCount; first += kNodesPerStep)
+        writeNodes(g, ws.forward, first, ws.slice.out, ws.slice.nearest, uint32_t(ws.slice.sourceCount));
 }
 
 // Index i of the ready list once the search has published it.

@@ -11,9 +11,9 @@ namespace {
 
 using namespace vg;
 
-// The search's labels as the fill reads them: per second-layer node slot (slotBegin-based,
-// vg_workspace.h's slotDist), so that a patch's come from a few consecutive lines instead of
-// a line per node.
+// The search's labels, kept per second-layer node slot (slotBegin-based, vg_workspace.h's
+// slotDist) and nowhere else, so that a patch's come from a few consecutive lines instead
+// of a line per node.
 struct SlotLabels {
     const float* dist;        // +inf: none; -inf: a merged-away node
     const uint32_t* source;   // its nearest source
@@ -178,15 +178,18 @@ void fillMergedAway(const vg_graph& g, vg_workspace& ws, float* out, uint32_t* n
 // The search's distances of the nodes, a chunk per step (each node once, at its own vertex).
 constexpr uint32_t kNodesPerStep = 256;
 
-// A node without a label (unreached, or merged away: the fills give it its distance) starts
-// at +inf and no source, as beginField leaves the nodes' vertices to this.
-void writeNodes(const vg_graph& g, const Frontier& f, uint32_t first, float* out, uint32_t* nearest,
+// Each node's label is read at its first slot (the search keeps it only there, not in the
+// node arrays). A node without a label (unreached, or merged away: the fills give it its
+// distance) starts at +inf and no source, as beginField leaves the nodes' vertices to this.
+void writeNodes(const vg_graph& g, const SlotLabels& labels, uint32_t first, float* out, uint32_t* nearest,
                 uint32_t noSource) {
     const uint32_t end = g.nodeCount - first < kNodesPerStep ? g.nodeCount : first + kNodesPerStep;
     for (uint32_t n = first; n < end; ++n) {
-        const bool labelled = nodeActive(g, n) && f.labelled(n);
-        out[g.nodeVertex[n]] = labelled ? f.label[n].dist : __builtin_inff();
-        if (nearest) nearest[g.nodeVertex[n]] = labelled ? f.route[n].origin : noSource;
+        const Membership& m = g.nodeSecond[g.nodeSecondBegin[n]];
+        const uint32_t k = g.second[m.patch].slotBegin + m.slot;
+        const bool labelled = nodeActive(g, n) && labels.dist[k] < __builtin_inff();
+        out[g.nodeVertex[n]] = labelled ? labels.dist[k] : __builtin_inff();
+        if (nearest) nearest[g.nodeVertex[n]] = labelled ? labels.source[k] : noSource;
     }
 }
 
@@ -279,7 +282,6 @@ void beginPatchSearch(const vg_graph& g, vg_workspace& ws, ParallelFill* P) {
 // patches. Every node ends at the smallest label + entry, from the first source in slot
 // order that gives it.
 void visitPatch(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws, ParallelFill* P) {
-    Frontier& f = ws.forward;
     const Patch& p = g.second[patchIndex];
     const uint32_t n = p.nodeCount;
     const uint32_t* slots = g.slots + p.slotBegin;
@@ -308,10 +310,8 @@ void visitPatch(const vg_graph& g, uint32_t patchIndex, vg_workspace& ws, Parall
     lowerFromRows(g.avx2, g, p.scale, rows, labels, sources, sourceCount, n, best, from, nullptr, 0);
     for (uint32_t j = 0; j < n; ++j) {
         if (from[j] == kNone) continue;
-        const uint32_t v = slots[j], u = slots[from[j]], source = ws.slotSource[p.slotBegin + from[j]];
+        const uint32_t v = slots[j], source = ws.slotSource[p.slotBegin + from[j]];
         const bool first = !(dist[j] < __builtin_inff());  // (before announce writes it)
-        f.label[v] = Label{best[j], f.generation};
-        f.route[v] = Route{patchIndex, kNone, source, u};
         announce(g, ws, v, best[j], source, patchIndex);
         if (P != nullptr && first) countLabelled(g, *P, ws, v);
     }
@@ -402,7 +402,6 @@ vg_status beginField(const vg_graph* graph, vg_workspace* workspace, const uint3
 // phase `stop`; true once it is complete.
 bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget, uint32_t stop = Done) {
     FieldSlice& s = ws.slice;
-    Frontier& F = ws.forward;
     float* out = s.out;
     uint32_t* nearest = s.nearest;
     for (; budget > 0 && s.phase < stop; --budget) {
@@ -415,7 +414,7 @@ bool advanceField(const vg_graph& g, vg_workspace& ws, uint64_t budget, uint32_t
             s.next = 0;
         } else if (s.phase == Nodes) {
             if (s.next < g.nodeCount) {
-                writeNodes(g, F, s.next, out, nearest, uint32_t(s.sourceCount));
+                writeNodes(g, SlotLabels(ws), s.next, out, nearest, uint32_t(s.sourceCount));
                 s.next += kNodesPerStep;
                 continue;
             }
@@ -497,7 +496,7 @@ void searchPublishing(const vg_graph& g, vg_workspace& ws) {
     __atomic_store_n(&P.published, length, __ATOMIC_RELEASE);
     // (The nodes' entries after that, so that no task waits for them.)
     for (uint32_t first = 0; first < g.nodeCount; first += kNodesPerStep)
-        writeNodes(g, ws.forward, first, ws.slice.out, ws.slice.nearest, uint32_t(ws.slice.sourceCount));
+        writeNodes(g, SlotLabels(ws), first, ws.slice.out, ws.slice.nearest, uint32_t(ws.slice.sourceCount));
 }
 
 // Index i of the ready list once the search has published it.

@@ -252,7 +252,8 @@ struct vg_workspace {
     float* slotSent;               // ... and per node slot: the label last relaxed through that patch,
     float* slotDist;               // ... its node's label (+inf: none yet), which announce writes to
                                    //     all the node's slots so that a visit or fill reads a patch's
-                                   //     labels from consecutive lines (-inf in both: merged away),
+                                   //     labels from consecutive lines (-inf in both: merged away);
+                                   //     the search keeps its labels only here, not in `forward`,
     uint32_t* slotSource;          // ... the label's source,
     uint8_t* slotThrough;          // ... 1 where it came through this patch's own row,
     float* slotBlank;              // ... and what slotSent and slotDist start a query at (at init)

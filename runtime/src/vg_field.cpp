@@ -185,11 +185,16 @@ void writeNodes(const vg_graph& g, const SlotLabels& labels, uint32_t first, flo
                 uint32_t noSource) {
     const uint32_t end = g.nodeCount - first < kNodesPerStep ? g.nodeCount : first + kNodesPerStep;
     for (uint32_t n = first; n < end; ++n) {
-        const Membership& m = g.nodeSecond[g.nodeSecondBegin[n]];
-        const uint32_t k = g.second[m.patch].slotBegin + m.slot;
-        const bool labelled = nodeActive(g, n) && labels.dist[k] < __builtin_inff();
-        out[g.nodeVertex[n]] = labelled ? labels.dist[k] : __builtin_inff();
-        if (nearest) nearest[g.nodeVertex[n]] = labelled ? labels.source[k] : noSource;
+        float d = __builtin_inff();
+        uint32_t source = noSource;
+        // (A node in no second-layer patch, which only a crafted blob has, is never labelled.)
+        if (nodeActive(g, n) && g.nodeSecondBegin[n] < g.nodeSecondBegin[n + 1]) {
+            const Membership& m = g.nodeSecond[g.nodeSecondBegin[n]];
+            const uint32_t k = g.second[m.patch].slotBegin + m.slot;
+            if (labels.dist[k] < __builtin_inff()) d = labels.dist[k], source = labels.source[k];
+        }
+        out[g.nodeVertex[n]] = d;
+        if (nearest) nearest[g.nodeVertex[n]] = source;
     }
 }
 

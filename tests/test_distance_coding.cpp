@@ -389,6 +389,36 @@ TEST_CASE("runtime: a blob whose patch edges are not in order of their first slo
     CHECK(openStatus(swapped(differ)) == VG_ERR_CORRUPT_CONTENT);
 }
 
+TEST_CASE("runtime: a blob that lists a vertex in two interior slots is refused", "[runtime]") {
+    // One-to-all writes each interior vertex once, from its home patch, without comparing
+    // (vg_field.cpp): vg_open must refuse a second interior slot for it. The blob stays
+    // consistent otherwise: vertex w, next to v in a patch's interior slots, gives its
+    // slot and its face corners to v and becomes a vertex used by no face.
+    std::vector<uint8_t> blob = bakeWith(planeGrid(12, 12, 1.0, 0.05, 3), false, false);
+    REQUIRE(openStatus(blob) == VG_OK);
+    const fb::Graph* g = fb::GetGraph(blob.data() + VG_CONTAINER_HEADER_SIZE);
+    const auto* patches = g->second_patches();
+    const auto* slots = g->slots();
+    uint32_t at = UINT32_MAX;  // the slot of w, after v's
+    for (uint32_t i = 0; i < patches->size() && at == UINT32_MAX; ++i) {
+        const auto* p = patches->Get(i);
+        if (p->slot_count() >= p->node_count() + 2) at = p->slot_begin() + p->node_count() + 1;
+    }
+    REQUIRE(at != UINT32_MAX);
+    const uint32_t v = slots->Get(at - 1), w = slots->Get(at);
+    auto offset = [&](const void* x) { return size_t(static_cast<const uint8_t*>(x) - blob.data()); };
+    auto put32 = [&](std::vector<uint8_t>& b, size_t o, uint32_t x) { std::memcpy(b.data() + o, &x, 4); };
+    std::vector<uint8_t> bad = blob;
+    put32(bad, offset(slots->Data()) + 4 * size_t(at), v);
+    const auto* corners = g->face_vertices();
+    for (uint32_t h = 0; h < corners->size(); ++h)
+        if (corners->Get(h) == w) put32(bad, offset(corners->Data()) + 4 * size_t(h), v);
+    put32(bad, offset(g->vertex_patch()->Data()) + 4 * size_t(w), UINT32_MAX);
+    put32(bad, offset(g->vertex_halfedge()->Data()) + 4 * size_t(w), UINT32_MAX);
+    resealChecksum(bad);
+    CHECK(openStatus(bad) == VG_ERR_CORRUPT_CONTENT);
+}
+
 TEST_CASE("distance coding: --compact needs compression", "[runtime][coding]") {
     BakeOptions o;
     o.compress = false;

@@ -158,6 +158,55 @@ TEST_CASE("field kernels: crossings match crossing() of vg_graph.h, bit for bit,
     }
 }
 
+TEST_CASE("field kernels: the search's slot scan and changed slots match a plain loop in both versions",
+          "[runtime][kernels]") {
+    const int versions = vg::cpuHasAvx512() ? 2 : 1;  // portable, AVX-512
+    if (versions == 1) WARN("this CPU has no AVX-512: only the portable version runs");
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> u(0.0f, 4.0f);
+    const float inf = __builtin_inff();
+    for (int trial = 0; trial < 400; ++trial) {
+        const uint32_t n = rng() % 70;
+        std::vector<float> dist(n), sent(n);
+        for (uint32_t j = 0; j < n; ++j) {
+            const uint32_t kind = rng() % 6;  // unlabelled, merged away, equal, lower, higher
+            dist[j] = kind == 0 ? inf : kind == 1 ? -inf : u(rng);
+            sent[j] = kind == 0 ? inf : kind == 1 ? -inf : kind == 2 ? dist[j] : kind == 3 ? dist[j] + 0.5f : inf;
+        }
+        // The plain loop the kernels stand for.
+        std::vector<float> refSent = sent;
+        std::vector<uint32_t> refSources;
+        for (uint32_t j = 0; j < n; ++j)
+            if (dist[j] < refSent[j]) refSent[j] = dist[j], refSources.push_back(j);
+        std::vector<uint32_t> from(n + vg::kRowSlack, 0u);
+        for (uint32_t j = 0; j < n; ++j) from[j] = rng() % 3 == 0 ? 5u : vg::kNone;
+        std::vector<uint32_t> refChanged;
+        for (uint32_t j = 0; j < n; ++j)
+            if (from[j] != vg::kNone) refChanged.push_back(j);
+        for (int version = 0; version < versions; ++version) {
+            INFO("trial " << trial << " n " << n << " version " << version);
+            std::vector<float> s = sent, best(n + vg::kRowSlack, 7.0f), labels(n + vg::kRowSlack);
+            std::vector<uint32_t> marks(n + vg::kRowSlack, 3u), sources(n + vg::kRowSlack);
+            const uint32_t count = vg::scanSources(version == 1, dist.data(), s.data(), best.data(), marks.data(), n,
+                                                   sources.data(), labels.data());
+            REQUIRE(count == refSources.size());
+            for (uint32_t k = 0; k < count; ++k) {
+                REQUIRE(sources[k] == refSources[k]);
+                REQUIRE(sameBits(labels[k], dist[sources[k]]));
+            }
+            for (uint32_t j = 0; j < n; ++j) {
+                REQUIRE(sameBits(s[j], refSent[j]));
+                REQUIRE(sameBits(best[j], dist[j]));
+                REQUIRE(marks[j] == vg::kNone);
+            }
+            std::vector<uint32_t> changed(n + vg::kRowSlack);
+            const uint32_t changedCount = vg::changedSlots(version == 1, from.data(), n, changed.data());
+            REQUIRE(changedCount == refChanged.size());
+            for (uint32_t k = 0; k < changedCount; ++k) REQUIRE(changed[k] == refChanged[k]);
+        }
+    }
+}
+
 TEST_CASE("field kernels: one-to-all fields are the same bits with the AVX2, AVX-512 and portable kernels",
           "[runtime][kernels]") {
     if (!vg::cpuHasAvx2()) {

@@ -54,6 +54,19 @@ struct CrossingEdge {
 void lowerByCrossings(bool avx2, const float* rows, float a, const float* c, const CrossingEdge* edges,
                       uint32_t edgeCount, const uint32_t* members, uint32_t memberCount, float* best);
 
+// The one-to-all search's scan of a patch's n node slots (labels dist, last relaxed labels
+// sent): best = dist and from = kNone for every slot, and the slots whose label is below
+// the one sent (sent takes it) listed in order in sources, with their labels in labels;
+// their number. With `avx512` (x86-64), sixteen slots at a time without a branch per
+// slot. best, from, sources and labels have kRowSlack entries past n (the vector version
+// writes whole vectors).
+uint32_t scanSources(bool avx512, const float* dist, float* sent, float* best, uint32_t* from, uint32_t n,
+                     uint32_t* sources, float* labels);
+
+// The slots j < n with from[j] != kNone, in order, into out (kRowSlack entries past n);
+// their number. With `avx512`, sixteen at a time.
+uint32_t changedSlots(bool avx512, const uint32_t* from, uint32_t n, uint32_t* out);
+
 // True when this CPU and operating system run AVX2 code (x86-64 only).
 bool cpuHasAvx2();
 // True when they run AVX-512 (foundation) code as well.

@@ -77,7 +77,7 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.vertexStamp = L.take<uint32_t>(V);
     // The row kernels read and write whole vectors up to kRowSlack entries past a patch.
     o.patchNodeDistance = L.take<float>(kMaxPatchSlots + vg::kRowSlack);
-    o.patchNodeSlot = L.take<uint32_t>(kMaxPatchSlots);
+    o.patchNodeSlot = L.take<uint32_t>(kMaxPatchSlots + vg::kRowSlack);
     o.patchNodeRow = L.take<uint64_t>(kMaxPatchSlots);
     o.patchBest = L.take<float>(kMaxPatchSlots + vg::kRowSlack);
     o.patchBestNode = L.take<uint32_t>(kMaxPatchSlots + vg::kRowSlack);
@@ -92,6 +92,7 @@ void assign(const vg_graph& g, Layout& L, vg_workspace* ws) {
     o.patchQueue.position = L.take<uint32_t>(g.secondCount);
     o.patchQueue.heap = L.take<vg::HeapEntry>(g.secondCount);
     o.patchQueue.size = 0;
+    o.patchChanged = L.take<uint32_t>(kMaxPatchSlots + vg::kRowSlack);
     o.slotSent = L.take<float>(secondNodeSlotEnd(g));
     o.slotDist = L.take<float>(secondNodeSlotEnd(g));
     o.slotSource = L.take<uint32_t>(secondNodeSlotEnd(g));

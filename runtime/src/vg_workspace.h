@@ -236,7 +236,7 @@ struct vg_workspace {
     uint32_t* vertexStamp;
     // vg_distance_field, per patch: in the search its sources, in the fill its reached nodes
     float* patchNodeDistance;      // ... their labels (65536 entries and the kernels' slack),
-    uint32_t* patchNodeSlot;       // ... their slots,
+    uint32_t* patchNodeSlot;       // ... their slots (with the kernels' slack too),
     uint64_t* patchNodeRow;        // ... the packed index of their row (node or interior part);
     float* patchBest;              // per node slot (search) or interior slot (fill): best so far
     uint32_t* patchBestNode;       // ... and the source slot or reached node that gave it
@@ -249,6 +249,7 @@ struct vg_workspace {
     uint32_t* slotEntries;         // per node slot of one patch: its row in patchEntries, else kNone
     float* patchEntries;           // node rows over a patch's interior slots, decoded (entriesStride apart)
     vg::PatchQueue patchQueue;     // one-to-all search: patches with news ...
+    uint32_t* patchChanged;        // ... a visit's node slots whose labels dropped (and kRowSlack),
     float* slotSent;               // ... and per node slot: the label last relaxed through that patch,
     float* slotDist;               // ... its node's label (+inf: none yet), which announce writes to
                                    //     all the node's slots so that a visit or fill reads a patch's

@@ -148,11 +148,16 @@ VG_AVX512 inline __mmask16 laneMask(uint32_t j0, uint32_t n) {
     return n - j0 >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (n - j0)) - 1u);
 }
 
+// The slot numbers j0 .. j0 + 15, one per lane.
+VG_AVX512 inline __m512i slotsFrom(uint32_t j0) {
+    return _mm512_add_epi32(_mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+                            _mm512_set1_epi32(int32_t(j0)));
+}
+
 // scanSources sixteen slots at a time: a comparison gives the sources' lanes, which a
 // register compress packs in slot order (the compress to memory is slow on some CPUs).
 VG_AVX512 uint32_t scanSourcesAvx512(const float* dist, float* sent, float* best, uint32_t* from, uint32_t n,
                                      uint32_t* sources, float* labels) {
-    const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
     const __m512i none = _mm512_set1_epi32(int32_t(kNone));
     uint32_t count = 0;
     for (uint32_t j0 = 0; j0 < n; j0 += 16) {
@@ -162,8 +167,7 @@ VG_AVX512 uint32_t scanSourcesAvx512(const float* dist, float* sent, float* best
         _mm512_mask_storeu_epi32(from + j0, live, none);
         const __mmask16 lower = _mm512_mask_cmp_ps_mask(live, d, _mm512_maskz_loadu_ps(live, sent + j0), _CMP_LT_OQ);
         _mm512_mask_storeu_ps(sent + j0, lower, d);
-        const __m512i slot = _mm512_add_epi32(iota, _mm512_set1_epi32(int32_t(j0)));
-        _mm512_storeu_si512(sources + count, _mm512_maskz_compress_epi32(lower, slot));
+        _mm512_storeu_si512(sources + count, _mm512_maskz_compress_epi32(lower, slotsFrom(j0)));
         _mm512_storeu_ps(labels + count, _mm512_maskz_compress_ps(lower, d));
         count += uint32_t(__builtin_popcount(lower));
     }
@@ -171,13 +175,11 @@ VG_AVX512 uint32_t scanSourcesAvx512(const float* dist, float* sent, float* best
 }
 
 VG_AVX512 uint32_t changedSlotsAvx512(const uint32_t* from, uint32_t n, uint32_t* out) {
-    const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
     const __m512i none = _mm512_set1_epi32(int32_t(kNone));
     uint32_t count = 0;
     for (uint32_t j0 = 0; j0 < n; j0 += 16) {
         const __mmask16 changed = _mm512_mask_cmpneq_epi32_mask(laneMask(j0, n), _mm512_loadu_si512(from + j0), none);
-        const __m512i slot = _mm512_add_epi32(iota, _mm512_set1_epi32(int32_t(j0)));
-        _mm512_storeu_si512(out + count, _mm512_maskz_compress_epi32(changed, slot));
+        _mm512_storeu_si512(out + count, _mm512_maskz_compress_epi32(changed, slotsFrom(j0)));
         count += uint32_t(__builtin_popcount(changed));
     }
     return count;

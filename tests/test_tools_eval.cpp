@@ -134,14 +134,22 @@ TEST_CASE("vorogeo bench, render and voronoi run on a baked mesh", "[tools][cli]
                           Catch::Contains("\"bidirectional_sssd_p50_us\":") && Catch::Contains("\"open_ms\":") &&
                           Catch::Contains("\"fixed_work_p99_us\":"));
     CHECK_THAT(r.out, !Catch::Contains("exact_ssad_p50_ms"));
-    CHECK_THAT(r.out, Catch::Contains("\"turn_pairs\":500,"));  // the default turn
+    CHECK_THAT(r.out, Catch::Contains("\"turn_pairs\":500,"));     // the default turn
+    CHECK_THAT(r.out, Catch::Contains("\"warmup_pairs\":500,"));   // and untimed pairs
     r = test::runTool("bench " + mesh + " " + blob + " --pairs 50 --sources 1 --json --runtime-only --turn 7");
     INFO(r.out << r.err);
     REQUIRE(r.status == 0);
     CHECK_THAT(r.out, Catch::Contains("\"turn_pairs\":7,") && Catch::Contains("\"pairs\":50,"));
+    r = test::runTool("bench " + mesh + " " + blob + " --pairs 50 --sources 1 --json --runtime-only --warmup 0");
+    INFO(r.out << r.err);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("\"warmup_pairs\":0,"));
     r = test::runTool("bench " + mesh + " " + blob + " --pairs 50 --runtime-only --turn 0");
     CHECK(r.status == 2);
     CHECK_THAT(r.err, Catch::Contains("--turn"));
+    r = test::runTool("bench " + mesh + " " + blob + " --pairs 50 --runtime-only --warmup -1");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Catch::Contains("--warmup"));
 
     // vorogeo eval with either point-to-point search; the search is named in the report.
     for (const char* search : {"directed", "bidirectional"}) {

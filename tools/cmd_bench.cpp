@@ -19,12 +19,14 @@ namespace {
 
 const char* kUsage =
     "usage: vorogeo bench MESH BLOB [--pairs N] [--sources M] [--dijkstra-pairs D] [--seed S] [--json]\n"
-    "                    [--runtime-only] [--turn T] [--no-endpoint-table] [--field-threads K]\n"
+    "                    [--runtime-only] [--turn T] [--warmup W] [--no-endpoint-table] [--field-threads K]\n"
     "  Times, in one run on the same random vertices (1 thread):\n"
     "    runtime point-to-point on N pairs (default 1000; the workspace's default mode, hub\n"
     "    labels where the blob has them and else the directed search, and the thesis's\n"
     "    bidirectional search, taking turns on blocks of T pairs, default 500) and one-to-all from M\n"
-    "    sources (default 5); the exact engines one-to-all from the M sources (wavefront)\n"
+    "    sources (default 5), each mode first answering W other pairs untimed (default 500; a\n"
+    "    process's first queries find nothing of the blob in the caches, and the host's pages\n"
+    "    cold), and one untimed field first; the exact engines one-to-all from the M sources (wavefront)\n"
     "    and point-to-point on the first M pairs (per pair the faster of MMP stopping at\n"
     "    the target and a whole wavefront field); Dijkstra on the edge graph one-to-all\n"
     "    from the M sources and point-to-point with early exit on the first D pairs\n"
@@ -53,7 +55,7 @@ struct Errors {
 }  // namespace
 
 int runBench(int argc, char** argv) {
-    cli::Args args(argc, argv, {"--pairs", "--sources", "--dijkstra-pairs", "--seed", "--turn", "--field-threads"}, {"--json", "--help", "--repair", "--runtime-only", "--no-endpoint-table"});
+    cli::Args args(argc, argv, {"--pairs", "--sources", "--dijkstra-pairs", "--seed", "--turn", "--warmup", "--field-threads"}, {"--json", "--help", "--repair", "--runtime-only", "--no-endpoint-table"});
     if (args.flag("--help")) {
         std::printf("%s", kUsage);
         return 0;
@@ -61,9 +63,10 @@ int runBench(int argc, char** argv) {
     if (args.positional().size() != 2) throw cli::UsageError(std::string("expected MESH and BLOB\n") + kUsage);
     const long long pairCount = args.integer("--pairs", 1000), sourceCount = args.integer("--sources", 5);
     const long long dijkstraPairs = args.integer("--dijkstra-pairs", 200), turnPairs = args.integer("--turn", 500);
-    const long long fieldThreads = args.integer("--field-threads", 2);
+    const long long fieldThreads = args.integer("--field-threads", 2), warmupPairs = args.integer("--warmup", 500);
     if (pairCount < 1 || sourceCount < 1 || dijkstraPairs < 1 || turnPairs < 1)
         throw cli::UsageError("--pairs, --sources, --dijkstra-pairs and --turn must be >= 1");
+    if (warmupPairs < 0) throw cli::UsageError("--warmup must be >= 0");
     if (fieldThreads < 1 || fieldThreads > 64) throw cli::UsageError("--field-threads must be 1 to 64");
     const uint64_t seed = uint64_t(args.integer("--seed", 1));
 
@@ -78,6 +81,10 @@ int runBench(int argc, char** argv) {
     for (auto& p : pairs) p = {pick(rng), pick(rng)};
     std::vector<uint32_t> sources(static_cast<size_t>(sourceCount));
     for (uint32_t& s : sources) s = pick(rng);
+    // Drawn after the timed pairs and sources, so that a seed times the same ones whatever W.
+    std::vector<std::pair<uint32_t, uint32_t>> warmup(static_cast<size_t>(warmupPairs));
+    for (auto& p : warmup) p = {pick(rng), pick(rng)};
+    const uint32_t warmupSource = pick(rng);
 
     RuntimeWorkspace ws(graph), thesisWs(graph);
     thesisWs.setSearch(VG_SEARCH_BIDIRECTIONAL);
@@ -88,8 +95,12 @@ int runBench(int argc, char** argv) {
     if (table.get() != nullptr)
         std::snprintf(tableNote, sizeof tableNote, " + endpoint table (%.1f MB, built in %.0f ms)", table.bytes() / 1e6,
                       table.buildSeconds() * 1e3);
-    volatile float sink = ws.distance(pairs[0].first, pairs[0].second);  // warm caches once
+    // Untimed first: the labels, then the thesis's search, so that the first timed turn (the
+    // labels') follows the other mode's queries, as every later turn does.
+    volatile float sink = ws.distance(pairs[0].first, pairs[0].second);
+    for (const auto& p : warmup) sink = ws.distance(p.first, p.second);
     sink = thesisWs.distance(pairs[0].first, pairs[0].second);
+    for (const auto& p : warmup) sink = thesisWs.distance(p.first, p.second);
     std::vector<double> sssdUs, thesisSssdUs, msadMs, exactSsadMs, exactSssdMs, dijkstraSssdUs, dijkstraSsadMs;
     // The two modes take turns on blocks of pairs (which goes first alternates), so that
     // the machine's drift affects both alike while each mode answers a batch of queries
@@ -128,6 +139,13 @@ int runBench(int argc, char** argv) {
         for (long long i = 1; i < fieldThreads; ++i) fieldWorkspaces.emplace_back(graph);
         for (const RuntimeWorkspace& w : fieldWorkspaces) parallelWs.push_back(w.get());
         std::vector<double> parallelMs;
+        // One untimed field each way first (the field's blocks, like the labels, start cold).
+        ws.field({warmupSource}, field);
+        if (vg_distance_field_parallel(graph.graph(), parallelWs.data(), uint32_t(parallelWs.size()), &warmupSource, 1,
+                                       field.data(), nullptr, TaskThreads::parallelFor, &helpers) != VG_OK) {
+            std::fprintf(stderr, "vorogeo bench: vg_distance_field_parallel failed on the warm-up source\n");
+            return 1;
+        }
         for (size_t i = 0; i < sources.size(); ++i) {
             const std::vector<uint32_t> source = {sources[i]};
             for (int k = 0; k < 2; ++k) {
@@ -152,22 +170,23 @@ int runBench(int argc, char** argv) {
         (void)sink;
         const double msad = percentile(msadMs, 50), msadParallel = percentile(parallelMs, 50);
         if (args.flag("--json"))
-            std::printf("{\"mesh\":\"%s\",\"mode\":\"%s\",\"vertices\":%u,\"blob_bytes\":%zu,\"pairs\":%zu,\"turn_pairs\":%zu,\"sources\":%zu,"
+            std::printf("{\"mesh\":\"%s\",\"mode\":\"%s\",\"vertices\":%u,\"blob_bytes\":%zu,\"pairs\":%zu,\"turn_pairs\":%zu,\"warmup_pairs\":%zu,\"sources\":%zu,"
                         "\"sssd_p50_us\":%.2f,\"sssd_p99_us\":%.2f,\"bidirectional_sssd_p50_us\":%.2f,"
                         "\"bidirectional_sssd_p99_us\":%.2f,\"msad_p50_ms\":%.3f,\"open_ms\":%.1f,"
                         "\"fixed_work_p50_us\":%.2f,\"fixed_work_p99_us\":%.2f,"
                         "\"endpoint_table_bytes\":%zu,\"endpoint_table_build_ms\":%.1f,"
                         "\"field_threads\":%lld,\"msad_threads_p50_ms\":%.3f}\n",
-                        args.positional()[0].c_str(), mode, V, graph.blobBytes(), pairs.size(), turn, sources.size(), sssdP50,
-                        sssdP99, thesisP50, thesisP99, msad, graph.openSeconds() * 1e3, host.p50Us, host.p99Us,
+                        args.positional()[0].c_str(), mode, V, graph.blobBytes(), pairs.size(), turn, warmup.size(),
+                        sources.size(), sssdP50, sssdP99, thesisP50, thesisP99, msad, graph.openSeconds() * 1e3, host.p50Us, host.p99Us,
                         table.get() ? table.bytes() : size_t(0), table.buildSeconds() * 1e3, fieldThreads, msadParallel);
         else
-            std::printf("%s: %u vertices, blob %zu bytes (opened in %.1f ms); %zu pairs, %zu sources, runtime only, 1 thread unless said\n"
+            std::printf("%s: %u vertices, blob %zu bytes (opened in %.1f ms); %zu pairs (after %zu untimed), %zu sources, runtime only, "
+                        "1 thread unless said\n"
                         "point-to-point (%s%s) p50 %.1f us, p99 %.1f us (thesis's bidirectional search: p50 %.1f us, "
                         "p99 %.1f us; %.2fx / %.2fx); one-to-all p50 %.2f ms (on %lld threads: %.2f ms)\n"
                         "host noise: fixed work as long as the p50 takes p50 %.1f us, p99 %.1f us\n",
                         args.positional()[0].c_str(), V, graph.blobBytes(), graph.openSeconds() * 1e3, pairs.size(),
-                        sources.size(), mode, tableNote, sssdP50, sssdP99, thesisP50, thesisP99, thesisP50 / sssdP50, thesisP99 / sssdP99,
+                        warmup.size(), sources.size(), mode, tableNote, sssdP50, sssdP99, thesisP50, thesisP99, thesisP50 / sssdP50, thesisP99 / sssdP99,
                         msad, fieldThreads, msadParallel, host.p50Us, host.p99Us);
         return 0;
     }
@@ -177,6 +196,7 @@ int runBench(int argc, char** argv) {
     WavefrontWorkspace waveWs;    // the faster engine for whole fields
     Errors runtimeErr, dijkstraErr;
     std::vector<double> exact, dijkstra;
+    ws.field({warmupSource}, field);  // untimed, as in --runtime-only
     for (uint32_t s : sources) {
         const std::vector<uint32_t> source = {s};
         Stopwatch a;
@@ -217,7 +237,7 @@ int runBench(int argc, char** argv) {
     const double exactSssd = percentile(exactSssdMs, 50), dijkstraSssd = percentile(dijkstraSssdUs, 50);
     const double dijkstraSsad = percentile(dijkstraSsadMs, 50);
     if (args.flag("--json")) {
-        std::printf("{\"mesh\":\"%s\",\"mode\":\"%s\",\"vertices\":%u,\"blob_bytes\":%zu,\"pairs\":%zu,\"turn_pairs\":%zu,\"sources\":%zu,"
+        std::printf("{\"mesh\":\"%s\",\"mode\":\"%s\",\"vertices\":%u,\"blob_bytes\":%zu,\"pairs\":%zu,\"turn_pairs\":%zu,\"warmup_pairs\":%zu,\"sources\":%zu,"
                     "\"sssd_p50_us\":%.2f,\"sssd_p99_us\":%.2f,\"bidirectional_sssd_p50_us\":%.2f,"
                     "\"bidirectional_sssd_p99_us\":%.2f,\"msad_p50_ms\":%.3f,"
                     "\"exact_sssd_p50_ms\":%.3f,\"exact_ssad_p50_ms\":%.3f,"
@@ -228,15 +248,16 @@ int runBench(int argc, char** argv) {
                     "\"dijkstra_mean_rel_error\":%.6e,\"dijkstra_max_rel_error\":%.6e,\"open_ms\":%.1f,"
                     "\"fixed_work_p50_us\":%.2f,\"fixed_work_p99_us\":%.2f,"
                     "\"endpoint_table_bytes\":%zu,\"endpoint_table_build_ms\":%.1f}\n",
-                    args.positional()[0].c_str(), mode, V, graph.blobBytes(), pairs.size(), turn, sources.size(), sssdP50,
-                    sssdP99, thesisP50, thesisP99, msad, exactSssd, exactSsad, dijkstraSssd, dijkstraSsad, exactSssd * 1e3 / sssdP50,
+                    args.positional()[0].c_str(), mode, V, graph.blobBytes(), pairs.size(), turn, warmup.size(), sources.size(),
+                    sssdP50, sssdP99, thesisP50, thesisP99, msad, exactSssd, exactSsad, dijkstraSssd, dijkstraSsad, exactSssd * 1e3 / sssdP50,
                     exactSsad / msad, dijkstraSssd / sssdP50, dijkstraSsad / msad, runtimeErr.mean(), runtimeErr.max,
                     dijkstraErr.mean(), dijkstraErr.max, graph.openSeconds() * 1e3, host.p50Us, host.p99Us,
                     table.get() ? table.bytes() : size_t(0), table.buildSeconds() * 1e3);
         return 0;
     }
-    std::printf("%s: %u vertices, blob %zu bytes (opened in %.1f ms); %zu pairs, %zu sources, 1 thread\n",
-                args.positional()[0].c_str(), V, graph.blobBytes(), graph.openSeconds() * 1e3, pairs.size(), sources.size());
+    std::printf("%s: %u vertices, blob %zu bytes (opened in %.1f ms); %zu pairs (after %zu untimed), %zu sources, 1 thread\n",
+                args.positional()[0].c_str(), V, graph.blobBytes(), graph.openSeconds() * 1e3, pairs.size(), warmup.size(),
+                sources.size());
     std::printf("runtime point-to-point: %s%s; bidirectional: the thesis's search on the same blob\n", mode, tableNote);
     std::printf("%-34s %12s %12s %12s %14s\n", "", "runtime", "exact", "Dijkstra", "bidirectional");
     std::printf("%-34s %9.1f us %9.1f ms %9.1f us %11.1f us\n", "point-to-point p50", sssdP50, exactSssd, dijkstraSssd,

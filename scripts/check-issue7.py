@@ -115,7 +115,10 @@ def main():
     parser.add_argument("--from", dest="saved", help="print the table from a kept run's check-issue7.json")
     args = parser.parse_args()
     if args.saved:
-        return report(json.load(open(args.saved)))
+        try:
+            return report(json.load(open(args.saved)))
+        except (OSError, ValueError, KeyError, TypeError) as e:
+            sys.exit(f"check-issue7: {args.saved} is not the figures of a --keep run ({e})")
     if args.runs < 1 or args.x16_runs < 1:
         parser.error("--runs and --x16-runs must be at least 1")
 

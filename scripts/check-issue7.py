@@ -92,7 +92,7 @@ class Table:
         thesis_cell = ""
         if thesis is not None:
             ratios = [t / v for t, v in zip(thesis, values)]
-            thesis_cell = f"{spread(thesis, fmt)} {unit}; {min(ratios):.1f}-{max(ratios):.1f}x"
+            thesis_cell = f"{spread(thesis, fmt)} {unit}; {spread(ratios, lambda r: f'{r:.1f}x')}"
         self.rows.append(f"| {target} | {fmt(bound)} {unit} | {spread(values, fmt)} {unit} | {within} of {len(values)} | "
                          f"{thesis_cell} | {verdict} |")
 

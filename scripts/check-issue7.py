@@ -109,7 +109,7 @@ def main():
     parser.add_argument("--shared", default=os.path.join(here, "..", "shared"))
     parser.add_argument("--runs", type=int, default=10, help="igea bench runs (seeds 1..N)")
     parser.add_argument("--x16-runs", type=int, default=3, help="igea x16 bench runs (seeds 1..N)")
-    parser.add_argument("--no-x16", action="store_true", help="leave out igea x16 (its bake takes ~18 min, 13.5 GB)")
+    parser.add_argument("--no-x16", action="store_true", help="leave out igea x16 (its bake takes 12-18 min and 13.3 GB)")
     parser.add_argument("--keep", help="keep meshes, blobs and reports here, and reuse those baked there before")
     parser.add_argument("--tool", default=os.path.join(here, "build", "tools", "vorogeo"))
     parser.add_argument("--from", dest="saved", help="print the table from a kept run's check-issue7.json")
@@ -140,7 +140,6 @@ def main():
 
 
 def check(args, mesh, golden, out):
-
     blob = os.path.join(out, "igea-issue7.vgeo")
     igea_bake = bake(args.tool, mesh, blob, IGEA_PROFILE)
     log("golden pairs, label query")

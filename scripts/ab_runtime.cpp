@@ -106,7 +106,8 @@ public:
         h.context_ = context;
         h.done_.store(false);
         h.round_.fetch_add(1, std::memory_order_release);
-        task(context, 0);
+        for (uint32_t i = 0; i < count; ++i)
+            if (i != 1) task(context, i);  // (task 1 on the helper)
         while (!h.done_.load(std::memory_order_acquire)) std::this_thread::yield();
     }
 

@@ -5,7 +5,8 @@
 # than the machine's drift between two runs (BENCHMARKS.md's "not kept" figures).
 # usage: scripts/ab-runtime.sh BLOB REV_A [REV_B] [--fields N] [--pairs N] [--seed S]
 #   REV_A, REV_B: git revisions, each built in a temporary worktree (Release); without
-#   REV_B, B is this checkout's working tree, built in build/.
+#   REV_B, B is this checkout's working tree (built in a temporary folder too, so that
+#   build/ keeps its own configuration).
 # A ratio A/B above 1 means B is faster.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
@@ -25,20 +26,22 @@ trap cleanup EXIT
 
 # The shared runtime library of revision $1 (or of the working tree when empty) at $2.
 build_library() {
-  local rev="$1" dest="$2" src
+  local rev="$1" dest="$2" src bin
   if [ -z "$rev" ]; then
     src="$here"
+    bin="$out/build-working-tree"
   else
     git -C "$here" rev-parse --verify --quiet "$rev^{commit}" > /dev/null || { echo "ab-runtime: no revision $rev" >&2; exit 1; }
     src="$out/tree-$(basename "$dest" .so)"
     git -C "$here" worktree add --detach --quiet "$src" "$rev"
+    bin="$src/build"
   fi
   echo "ab-runtime: building the runtime of ${rev:-the working tree}" >&2
-  cmake -S "$src" -B "$src/build" -DCMAKE_BUILD_TYPE=Release > "$out/cmake.log" 2>&1 ||
+  cmake -S "$src" -B "$bin" -DCMAKE_BUILD_TYPE=Release > "$out/cmake.log" 2>&1 ||
     { cat "$out/cmake.log" >&2; echo "ab-runtime: cmake failed for ${rev:-the working tree}" >&2; exit 1; }
-  cmake --build "$src/build" -j2 --target vorogeo_runtime_shared > "$out/build.log" 2>&1 ||
+  cmake --build "$bin" -j2 --target vorogeo_runtime_shared > "$out/build.log" 2>&1 ||
     { cat "$out/build.log" >&2; echo "ab-runtime: the build failed for ${rev:-the working tree}" >&2; exit 1; }
-  cp "$(readlink -f "$src/build/runtime/libvorogeo.so")" "$dest"
+  cp "$(readlink -f "$bin/runtime/libvorogeo.so")" "$dest"
 }
 
 build_library "$rev_a" "$out/a.so"

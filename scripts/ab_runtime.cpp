@@ -136,11 +136,6 @@ private:
     std::thread thread_;
 };
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
 double percentile(std::vector<double> v, double p) {
     std::sort(v.begin(), v.end());
     return v.empty() ? 0.0 : v[std::min(v.size() - 1, size_t(p / 100.0 * double(v.size())))];
@@ -173,7 +168,7 @@ void compareFields(Library* lib[2], const std::vector<uint32_t>& sources, uint32
     delete helper;
     std::printf("one-to-all, %d thread%s, %zu sources: A %.3f ms, B %.3f ms (medians); median A/B %.3f; "
                 "fields with other bits %zu\n",
-                threads, threads == 1 ? "" : "s", sources.size(), median(ms[0]), median(ms[1]), median(ratio), differing);
+                threads, threads == 1 ? "" : "s", sources.size(), percentile(ms[0], 50), percentile(ms[1], 50), percentile(ratio, 50), differing);
 }
 
 // Point-to-point on both libraries in turns of 500 pairs.

@@ -46,6 +46,7 @@ build_library() {
 
 build_library "$rev_a" "$out/a.so"
 build_library "$rev_b" "$out/b.so"
-c++ -O2 -std=c++17 -I"$here/runtime/include" "$here/scripts/ab_runtime.cpp" -o "$out/ab_runtime" -ldl -lpthread
+c++ -O2 -std=c++17 -I"$here/runtime/include" -I"$here/tools" "$here/scripts/ab_runtime.cpp" "$here/tools/task_threads.cpp" \
+  -o "$out/ab_runtime" -ldl -lpthread
 echo "A = ${rev_a}, B = ${rev_b:-working tree}"
 "$out/ab_runtime" "$out/a.so" "$out/b.so" "$blob" "$@"

@@ -7,16 +7,15 @@
 #include <dlfcn.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <random>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "task_threads.h"  // tools/: the job-system threads vorogeo bench times fields on
 #include "vorogeo.h"
 
 namespace {
@@ -88,54 +87,6 @@ struct Library {
     }
 };
 
-// A helper thread that polls for work, as a job system's worker between frames.
-class Helper {
-public:
-    Helper() : thread_([this] { run(); }) {}
-    ~Helper() {
-        quit_.store(true);
-        thread_.join();
-    }
-    static void parallelFor(void* user, uint32_t count, vg_task task, void* context) {
-        Helper& h = *static_cast<Helper*>(user);
-        if (count < 2) {
-            for (uint32_t i = 0; i < count; ++i) task(context, i);
-            return;
-        }
-        h.task_ = task;
-        h.context_ = context;
-        h.done_.store(false);
-        h.round_.fetch_add(1, std::memory_order_release);
-        for (uint32_t i = 0; i < count; ++i)
-            if (i != 1) task(context, i);  // (task 1 on the helper)
-        while (!h.done_.load(std::memory_order_acquire)) std::this_thread::yield();
-    }
-
-private:
-    static void pause() {
-#if defined(__x86_64__) || defined(__i386__)
-        __builtin_ia32_pause();
-#endif
-    }
-    void run() {
-        uint64_t seen = 0;
-        while (!quit_.load()) {
-            if (round_.load(std::memory_order_acquire) == seen) {
-                pause();
-                continue;
-            }
-            seen = round_.load();
-            task_(context_, 1);
-            done_.store(true, std::memory_order_release);
-        }
-    }
-    std::atomic<uint64_t> round_{0};
-    std::atomic<bool> done_{false}, quit_{false};
-    vg_task task_ = nullptr;
-    void* context_ = nullptr;
-    std::thread thread_;
-};
-
 double percentile(std::vector<double> v, double p) {
     std::sort(v.begin(), v.end());
     return v.empty() ? 0.0 : v[std::min(v.size() - 1, size_t(p / 100.0 * double(v.size())))];
@@ -148,7 +99,7 @@ void compareFields(Library* lib[2], const std::vector<uint32_t>& sources, uint32
     std::vector<float> out[2] = {std::vector<float>(vertices), std::vector<float>(vertices)};
     std::vector<double> ms[2], ratio;
     size_t differing = 0;
-    Helper* helper = threads == 2 ? new Helper : nullptr;  // (polls a core only while in use)
+    vorogeo::tools::TaskThreads helpers(unsigned(threads - 1));  // as vorogeo bench's
     for (size_t i = 0; i < sources.size(); ++i) {
         double t[2];
         for (int k = 0; k < 2; ++k) {
@@ -157,7 +108,7 @@ void compareFields(Library* lib[2], const std::vector<uint32_t>& sources, uint32
             const auto start = Clock::now();
             const vg_status st = threads == 1 ? L.field(L.graph, L.workspaces[0], &sources[i], 1, out[which].data())
                                               : L.fieldParallel(L.graph, L.workspaces, 2, &sources[i], 1, out[which].data(),
-                                                                nullptr, Helper::parallelFor, helper);
+                                                                nullptr, vorogeo::tools::TaskThreads::parallelFor, &helpers);
             t[which] = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
             if (st != VG_OK) fail(std::string("one-to-all failed: ") + L.statusString(st));
         }
@@ -165,7 +116,6 @@ void compareFields(Library* lib[2], const std::vector<uint32_t>& sources, uint32
         ratio.push_back(t[0] / t[1]);
         if (std::memcmp(out[0].data(), out[1].data(), vertices * sizeof(float)) != 0) ++differing;
     }
-    delete helper;
     std::printf("one-to-all, %d thread%s, %zu sources: A %.3f ms, B %.3f ms (medians); median A/B %.3f; "
                 "fields with other bits %zu\n",
                 threads, threads == 1 ? "" : "s", sources.size(), percentile(ms[0], 50), percentile(ms[1], 50), percentile(ratio, 50), differing);

@@ -7,7 +7,8 @@ set -euo pipefail
 src="$1" lib="$2" blob="$3" cxx="${4:-c++}"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
-"$cxx" -O2 -std=c++17 -I"$src/runtime/include" "$src/scripts/ab_runtime.cpp" -o "$tmp/ab_runtime" -ldl -lpthread
+"$cxx" -O2 -std=c++17 -I"$src/runtime/include" -I"$src/tools" "$src/scripts/ab_runtime.cpp" "$src/tools/task_threads.cpp" \
+  -o "$tmp/ab_runtime" -ldl -lpthread
 # (Two files: dlopen gives one handle for one path.)
 cp "$lib" "$tmp/a.so"
 cp "$lib" "$tmp/b.so"

@@ -13,8 +13,10 @@ The table gives each figure's range and median over the runs, how many runs were
 the bound, the thesis's figure and the ratio from the same runs, and a verdict: "every
 run", "median only" (the median run within, some runs not: this host's minutes differ,
 and a run that meets a busy one is counted, not hidden) or "not met". Exit status 0 when
-every target holds in every run, 1 otherwise. --from prints the table again from the
-figures a --keep run saved.
+every target holds in every run, 1 otherwise. The last lines name the host's processor and
+its speed as the bench measures it (a dependent multiply-add and a dependent load): each
+session gets a host of its own, and a figure that moved is read against these first.
+--from prints the table again from the figures a --keep run saved.
 
 usage: scripts/check-issue7.py [--shared DIR] [--runs N] [--x16-runs N] [--no-x16]
                                [--keep DIR] [--tool PATH]
@@ -60,6 +62,21 @@ def bake(tool, mesh, blob, profile):
     peak = re.search(r"Maximum resident set size \(kbytes\): (\d+)", open(timing).read())
     result["peak_gb"] = int(peak.group(1)) / 1e6 if peak else float("nan")
     return result
+
+
+def host_cpu():
+    """The processor this check ran on, from /proc/cpuinfo (sessions get different hosts)."""
+    fields = {}
+    try:
+        for line in open("/proc/cpuinfo"):
+            key, _, value = line.partition(":")
+            fields.setdefault(key.strip(), value.strip())
+    except OSError:
+        pass
+    name = fields.get("model name", "unknown processor")
+    if "cpu family" in fields and "model" in fields:
+        name += f" (family {fields['cpu family']}, model {fields['model']})"
+    return f"{name}, {os.cpu_count()} logical CPUs"
 
 
 def bench(tool, mesh, blob, seed, extra):
@@ -164,7 +181,7 @@ def check(args, mesh, golden, out):
                                   ["--pairs", "20000", "--turn", "20000", "--sources", "1"]))
 
     figures = {"igea_bake": igea_bake, "igea_error": error, "igea_runs": runs, "x16_bake": x16_bake,
-               "x16_runs": x16_runs}
+               "x16_runs": x16_runs, "host": host_cpu()}
     if args.keep:
         saved = os.path.join(out, "check-issue7.json")
         json.dump(figures, open(saved, "w"), indent=1)
@@ -202,6 +219,13 @@ def report(figures):
               f"({x16_bake['bytes_per_vertex']:.1f} B/v); p2p p99 {spread([r['sssd_p99_us'] for r in x16_runs], us)} us; "
               f"one-to-all {spread([r['msad_threads_p50_ms'] for r in x16_runs], us)} ms on 2 threads; "
               f"runs at {x16_runs[0]['clock']}-{x16_runs[-1]['clock']}")
+    speed = [r for r in runs if "host_load_ns" in r]
+    if "host" in figures or speed:
+        line = f"host: {figures.get('host', 'processor not recorded')}"
+        if speed:
+            line += (f"; a dependent multiply-add {spread([r['host_multiply_add_ns'] for r in speed], lambda v: f'{v:.3f}')} ns, "
+                     f"a dependent load over 64 MB {spread([r['host_load_ns'] for r in speed], us)} ns (the igea runs)")
+        print(line)
     if t.failed:
         print(f"not within in every run: {'; '.join(t.failed)}")
     return 1 if t.failed else 0

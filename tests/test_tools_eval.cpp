@@ -132,7 +132,8 @@ TEST_CASE("vorogeo bench, render and voronoi run on a baked mesh", "[tools][cli]
     REQUIRE(r.status == 0);
     CHECK_THAT(r.out, Catch::Contains("\"sssd_p50_us\":") && Catch::Contains("\"msad_p50_ms\":") &&
                           Catch::Contains("\"bidirectional_sssd_p50_us\":") && Catch::Contains("\"open_ms\":") &&
-                          Catch::Contains("\"fixed_work_p99_us\":"));
+                          Catch::Contains("\"fixed_work_p99_us\":") && Catch::Contains("\"host_multiply_add_ns\":") &&
+                          Catch::Contains("\"host_load_ns\":"));
     CHECK_THAT(r.out, !Catch::Contains("exact_ssad_p50_ms"));
     CHECK_THAT(r.out, Catch::Contains("\"turn_pairs\":500,"));     // the default turn
     CHECK_THAT(r.out, Catch::Contains("\"warmup_pairs\":500,"));   // and untimed pairs

@@ -37,7 +37,8 @@ const char* kUsage =
     "    timing noise, which lifts every p99: fixed_work_p50_us, fixed_work_p99_us).\n"
     "  --runtime-only  time the runtime's queries alone (meshes too large for the exact engine),\n"
     "    and also one-to-all on K threads (vg_distance_field_parallel, default 2; the two take\n"
-    "    turns per source)\n"
+    "    turns per source), and how fast the host is: a dependent multiply-add and a dependent\n"
+    "    load over 64 MB (host_multiply_add_ns, host_load_ns), to compare figures across hosts\n"
     "  With hub labels the runtime's workspace reads an endpoint table (vg_endpoint_table_build;\n"
     "  its bytes and build time are printed); --no-endpoint-table times the labels without one.\n";
 
@@ -169,25 +170,29 @@ int runBench(int argc, char** argv) {
         }
         (void)sink;
         const double msad = percentile(msadMs, 50), msadParallel = percentile(parallelMs, 50);
+        const HostSpeed speed = hostSpeed();
         if (args.flag("--json"))
             std::printf("{\"mesh\":\"%s\",\"mode\":\"%s\",\"vertices\":%u,\"blob_bytes\":%zu,\"pairs\":%zu,\"turn_pairs\":%zu,\"warmup_pairs\":%zu,\"sources\":%zu,"
                         "\"sssd_p50_us\":%.2f,\"sssd_p99_us\":%.2f,\"bidirectional_sssd_p50_us\":%.2f,"
                         "\"bidirectional_sssd_p99_us\":%.2f,\"msad_p50_ms\":%.3f,\"open_ms\":%.1f,"
                         "\"fixed_work_p50_us\":%.2f,\"fixed_work_p99_us\":%.2f,"
                         "\"endpoint_table_bytes\":%zu,\"endpoint_table_build_ms\":%.1f,"
-                        "\"field_threads\":%lld,\"msad_threads_p50_ms\":%.3f}\n",
+                        "\"field_threads\":%lld,\"msad_threads_p50_ms\":%.3f,"
+                        "\"host_multiply_add_ns\":%.3f,\"host_load_ns\":%.1f}\n",
                         args.positional()[0].c_str(), mode, V, graph.blobBytes(), pairs.size(), turn, warmup.size(),
                         sources.size(), sssdP50, sssdP99, thesisP50, thesisP99, msad, graph.openSeconds() * 1e3, host.p50Us, host.p99Us,
-                        table.get() ? table.bytes() : size_t(0), table.buildSeconds() * 1e3, fieldThreads, msadParallel);
+                        table.get() ? table.bytes() : size_t(0), table.buildSeconds() * 1e3, fieldThreads, msadParallel,
+                        speed.multiplyAddNs, speed.loadNs);
         else
             std::printf("%s: %u vertices, blob %zu bytes (opened in %.1f ms); %zu pairs (after %zu untimed), %zu sources, runtime only, "
                         "1 thread unless said\n"
                         "point-to-point (%s%s) p50 %.1f us, p99 %.1f us (thesis's bidirectional search: p50 %.1f us, "
                         "p99 %.1f us; %.2fx / %.2fx); one-to-all p50 %.2f ms (on %lld threads: %.2f ms)\n"
-                        "host noise: fixed work as long as the p50 takes p50 %.1f us, p99 %.1f us\n",
+                        "host noise: fixed work as long as the p50 takes p50 %.1f us, p99 %.1f us\n"
+                        "host speed: a dependent multiply-add %.3f ns, a dependent load over 64 MB %.1f ns\n",
                         args.positional()[0].c_str(), V, graph.blobBytes(), graph.openSeconds() * 1e3, pairs.size(),
                         warmup.size(), sources.size(), mode, tableNote, sssdP50, sssdP99, thesisP50, thesisP99, thesisP50 / sssdP50, thesisP99 / sssdP99,
-                        msad, fieldThreads, msadParallel, host.p50Us, host.p99Us);
+                        msad, fieldThreads, msadParallel, host.p50Us, host.p99Us, speed.multiplyAddNs, speed.loadNs);
         return 0;
     }
 

@@ -2,6 +2,9 @@
 
 #include <sys/resource.h>
 
+#include <cstdint>
+#include <random>
+
 namespace vorogeo::tools {
 
 namespace {
@@ -38,6 +41,37 @@ FixedWorkTiming fixedWorkTiming(double micros, int runs) {
         us.push_back(w.seconds() * 1e6);
     }
     return FixedWorkTiming{percentile(us, 50), percentile(us, 99)};
+}
+
+HostSpeed hostSpeed() {
+    constexpr long kSteps = 2000000;
+    volatile double sink = 0.0;
+    std::vector<double> multiplyAdd;
+    for (int i = 0; i < 5; ++i) {
+        Stopwatch w;
+        sink = sink + chain(kSteps);
+        multiplyAdd.push_back(w.seconds() * 1e9 / double(kSteps));
+    }
+    // One cycle through all the cache lines of 64 MB in a shuffled order, each line holding
+    // the index of the next: every load waits for the one before, and the hardware
+    // prefetchers cannot guess the next line.
+    constexpr size_t kLines = (size_t(64) << 20) / 64, kWordsPerLine = 64 / sizeof(uint64_t);
+    std::vector<uint32_t> order(kLines);
+    for (size_t i = 0; i < kLines; ++i) order[i] = uint32_t(i);
+    std::mt19937_64 random(1);
+    for (size_t i = kLines - 1; i > 0; --i) std::swap(order[i], order[size_t(random() % (i + 1))]);
+    std::vector<uint64_t> lines(kLines * kWordsPerLine);
+    for (size_t i = 0; i < kLines; ++i) lines[size_t(order[i]) * kWordsPerLine] = order[(i + 1) % kLines];
+    constexpr long kLoads = 1000000;
+    std::vector<double> load;
+    uint64_t at = 0;
+    for (int i = 0; i < 3; ++i) {
+        Stopwatch w;
+        for (long k = 0; k < kLoads; ++k) at = lines[at * kWordsPerLine];
+        load.push_back(w.seconds() * 1e9 / double(kLoads));
+    }
+    sink = sink + double(at);
+    return HostSpeed{percentile(multiplyAdd, 50), percentile(load, 50)};
 }
 
 double peakRssMb() {

@@ -37,6 +37,16 @@ struct FixedWorkTiming {
 };
 FixedWorkTiming fixedWorkTiming(double micros, int runs = 2000);
 
+// How fast this host is, in two figures that do not depend on the code under test: a
+// dependent multiply-add (the core's clock and sharing) and a dependent load from a
+// random cycle over 64 MB, more than the last-level cache (its memory latency). Sessions
+// run on different hosts (BENCHMARKS.md), so a figure that moved is read against these
+// first. Medians of a few runs, ~0.3 s in all.
+struct HostSpeed {
+    double multiplyAddNs, loadNs;
+};
+HostSpeed hostSpeed();
+
 // Peak resident set size of this process so far, in megabytes.
 double peakRssMb();
 

@@ -69,6 +69,17 @@ expect("p50 still holds", rows.get("igea p2p p50"), ("5 of 5", "every run"))
 if "not within in every run: igea p2p p99 (4 of 5 runs within)" not in out:
     failures.append("the closing line does not name the p99 target and its count:\n" + out)
 
+# The host's processor and speed, when the figures have them (older saved figures do not).
+runs = [dict(run_of(15.0, 50.0, 2.3), host_multiply_add_ns=1.5 + 0.1 * i, host_load_ns=180.0 + i) for i in range(3)]
+data = figures(runs, [30.0])
+data["host"] = "Some CPU (family 1, model 2), 2 logical CPUs"
+code, rows, out = verdicts(data)
+if "host: Some CPU (family 1, model 2), 2 logical CPUs; a dependent multiply-add 1.500-1.700 (median 1.600) ns, " \
+        "a dependent load over 64 MB 180.0-182.0 (median 181.0) ns" not in out:
+    failures.append("the host line does not give the processor and the speed's ranges:\n" + out)
+if any(line.startswith("host:") for line in verdicts(figures([run_of(15.0, 50.0, 2.3)], [30.0]))[2].splitlines()):
+    failures.append("a host line for figures that recorded no host")
+
 if failures:
     print("\n".join(failures))
     sys.exit(1)

@@ -205,7 +205,9 @@ TEST_CASE("bake library: vorogeo::bake reports progress, can be cancelled, gives
     CHECK_THROWS_AS(bake(mesh, BakeOptions(), BakeProgress(), &cancel), BakeCancelled);
     CHECK(automaticLevel(false, 100 << 20) == 9);
     CHECK(automaticLevel(true, 100 << 20) == 19);
-    CHECK(automaticLevel(true, uint64_t(3) << 30) == 17);
+    CHECK(automaticLevel(true, uint64_t(1) << 30) == 19);
+    CHECK(automaticLevel(true, (uint64_t(1) << 30) + 1) == 11);
+    CHECK(automaticLevel(true, uint64_t(3) << 30) == 11);
     BakeOptions bad;
     bad.compressionLevel = 99;
     CHECK_THROWS_AS(bake(mesh, bad), std::invalid_argument);

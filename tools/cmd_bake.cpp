@@ -39,7 +39,7 @@ const char* kUsage =
     "  --no-compress  store the flatbuffer uncompressed, for zero-copy mapping\n"
     "  --compact  prediction-code the distances before compressing: about half the bytes\n"
     "             (igea 81 instead of 260 per vertex), ~2x the open time (igea ~80 ms)\n"
-    "  --level    zstd level, 1-22 (default: with --compact 19, or 17 above 1 GiB of payload;\n"
+    "  --level    zstd level, 1-22 (default: with --compact 19, or 11 above 1 GiB of payload;\n"
     "             else 9); higher is smaller and slower to bake\n"
     "  --report   write a JSON report (times, sizes, graph, peak memory)\n"
     "  --margin-rings  rings of faces around each patch for its geodesics (default 1)\n"

@@ -34,7 +34,7 @@ struct BakeOptions {
 // The automatic zstd level for a payload of `payloadBytes`: 9 for plain quanta, which
 // hardly compress anyway; for coded blobs 19 (igea: 10% smaller than 9, 10 s more with 2
 // threads), but 11 above 1 GiB of payload: there zstd's optimal-parse levels (16 and up)
-// cost 4-11x the time of 11 for 8-12% fewer bytes, and igea x16's 4.3 GB took 5.4 of its
+// cost 5-11x the time of 11 for 8-12% fewer bytes, and igea x16's 4.3 GB took 5.4 of its
 // bake's 20.4 minutes at 17. BENCHMARKS.md has the figures.
 int automaticLevel(bool coded, uint64_t payloadBytes);
 

@@ -142,6 +142,7 @@ void WavefrontWorkspace::emitFromVertex(uint32_t v, bool insideArea) {
     const Mesh& m = *geo_->mesh_;
     const double dv = (*dist_)[v];
     if (dv > maxDistance_) return;  // everything it could give lies beyond the bound
+    if (targeted_ && dv > budget(v)) return;  // ... or can reach no target within its bound
     ++stats_.pseudoSources;
     const int32_t start = m.vertexOut[v];
     if (start < 0) return;
@@ -180,6 +181,9 @@ void WavefrontWorkspace::propagateList(int32_t h) {
     const double L = geo_->edgeLength_[geo_->edgeOf_[h]];
     const double cx = geo_->frame_[h].apexX, cy = geo_->frame_[h].apexY;
     const double da = dist[a], db = dist[b];
+    // Windows whose minimum lies beyond keep give nothing within the bound(s).
+    double keep = maxDistance_;
+    if (targeted_) keep = std::min(keep, 0.5 * (budget(a) + budget(b) + L));
 
     batch_.clear();
     double best = kInfinity, bestSplit = 0.0, bestSx = 0.0, bestSy = 0.0;
@@ -201,7 +205,7 @@ void WavefrontWorkspace::propagateList(int32_t h) {
                 continue;
             // Distances only grow along a window's rays: one that starts beyond the bound
             // gives nothing within it.
-            if (maxDistance_ < kInfinity && windowMin(w.b0, w.b1, w.sx, w.sy, w.sigma) > maxDistance_) continue;
+            if (keep < kInfinity && windowMin(w.b0, w.b1, w.sx, w.sy, w.sigma) > keep) continue;
             // The window's way to the apex: straight through it, or round one of its ends.
             const double at = splitAtApex(w.sx, w.sy, cx, cy);
             double split = at, toApex;
@@ -328,9 +332,15 @@ void WavefrontWorkspace::run(const ExactGeodesic& geo, const std::vector<uint32_
     for (uint32_t s : sources)
         if (s >= nv) throw std::invalid_argument("source vertex " + std::to_string(s) + " out of range");
     if (!(maxDistance >= 0)) throw std::invalid_argument("maximum distance must be >= 0");
+    targeted_ = false;
+    propagate(geo, sources, distances, stats, maxDistance);
+}
+
+void WavefrontWorkspace::propagate(const ExactGeodesic& geo, const std::vector<uint32_t>& sources,
+                                   std::vector<double>& distances, ExactStats* stats, double maxDistance) {
     reset(geo);
     maxDistance_ = maxDistance;
-    distances.assign(nv, kInfinity);
+    distances.assign(geo.vertexCount(), kInfinity);
     dist_ = &distances;
     for (uint32_t s : sources) improve(s, 0.0);
     while (!heap_.empty()) popVertex(heapPop());
@@ -341,11 +351,57 @@ void WavefrontWorkspace::run(const ExactGeodesic& geo, const std::vector<uint32_
     dist_ = nullptr;
 }
 
+double WavefrontWorkspace::budget(uint32_t v) {
+    if (budgetStamp_[v] == runStamp_) return budget_[v];
+    const Vec3 p = geo_->mesh_->positions[v];
+    double best = -kInfinity;
+    // Targets by decreasing bound: none after one whose bound is below the best can win.
+    for (const TargetPoint& t : targetPoints_) {
+        if (t.bound <= best) break;
+        const double dx = p.x - t.x, dy = p.y - t.y, dz = p.z - t.z;
+        best = std::max(best, t.bound - std::sqrt(dx * dx + dy * dy + dz * dz));
+    }
+    budgetStamp_[v] = runStamp_;
+    return budget_[v] = best;
+}
+
+void WavefrontWorkspace::runToTargets(const ExactGeodesic& geo, uint32_t source, const std::vector<Target>& targets,
+                                      std::vector<double>& distances, ExactStats* stats) {
+    const uint32_t nv = geo.vertexCount();
+    if (source >= nv) throw std::invalid_argument("source vertex " + std::to_string(source) + " out of range");
+    double maxBound = 0;
+    for (const Target& t : targets) {
+        if (t.vertex >= nv) throw std::invalid_argument("target vertex " + std::to_string(t.vertex) + " out of range");
+        if (!(t.bound >= 0)) throw std::invalid_argument("target bound must be >= 0");
+        maxBound = std::max(maxBound, t.bound);
+    }
+    const std::vector<Vec3>& pos = geo.mesh().positions;
+    targetPoints_.clear();
+    for (const Target& t : targets) {
+        const Vec3 p = pos[t.vertex];
+        targetPoints_.push_back({p.x, p.y, p.z, t.bound});
+    }
+    std::sort(targetPoints_.begin(), targetPoints_.end(),
+              [](const TargetPoint& x, const TargetPoint& y) { return x.bound > y.bound; });
+    if (budgetStamp_.size() != nv || runStamp_ == kNil) {
+        budgetStamp_.assign(nv, 0);
+        budget_.assign(nv, 0.0);
+        runStamp_ = 0;
+    }
+    ++runStamp_;
+    targeted_ = true;
+    propagate(geo, {source}, distances, stats, maxBound);
+    for (const Target& t : targets)
+        if (distances[t.vertex] > t.bound) distances[t.vertex] = kInfinity;
+}
+
 size_t WavefrontWorkspace::memoryBytes() const {
     return blocks_.capacity() * sizeof(Block) +
            (freeBlocks_.capacity() + listHead_.capacity() + listTail_.capacity() + heap_.capacity() +
             heapPos_.capacity()) * sizeof(uint32_t) +
-           fifo_.capacity() * sizeof(int32_t) + state_.capacity() + batch_.capacity() * sizeof(Pending);
+           fifo_.capacity() * sizeof(int32_t) + state_.capacity() + batch_.capacity() * sizeof(Pending) +
+           targetPoints_.capacity() * sizeof(TargetPoint) + budget_.capacity() * sizeof(double) +
+           budgetStamp_.capacity() * sizeof(uint32_t);
 }
 
 std::vector<double> wavefrontDistancesFrom(const ExactGeodesic& geo, uint32_t source) {

@@ -30,6 +30,20 @@ public:
     void run(const ExactGeodesic& geo, const std::vector<uint32_t>& sources, std::vector<double>& distances,
              ExactStats* stats = nullptr, double maxDistance = kInfinity);
 
+    // A target vertex and the largest distance at which it is wanted.
+    struct Target {
+        uint32_t vertex;
+        double bound;
+    };
+    // Distances from one source vertex to `targets`: exact for a target whose distance is
+    // within its bound, +inf for one beyond it. A window is dropped once no path through it
+    // can reach any target within that target's bound (its minimum plus the straight way
+    // to the target, a lower bound of every such path, exceeds it), so a run does only
+    // the work between the source and the targets. Other vertices' distances are not
+    // meaningful afterwards. Throws as run() does.
+    void runToTargets(const ExactGeodesic& geo, uint32_t source, const std::vector<Target>& targets,
+                      std::vector<double>& distances, ExactStats* stats = nullptr);
+
     size_t memoryBytes() const;
 
 private:
@@ -41,6 +55,9 @@ private:
     enum : uint8_t { kOutside = 0, kFront = 1, kInside = 2 };
 
     void reset(const ExactGeodesic& geo);
+    // Both runs, after their arguments are checked.
+    void propagate(const ExactGeodesic& geo, const std::vector<uint32_t>& sources, std::vector<double>& distances,
+                   ExactStats* stats, double maxDistance);
     uint32_t allocBlock();
     void append(int32_t h, const Window& w);
     void pushList(int32_t h);
@@ -48,6 +65,10 @@ private:
     void emitFromVertex(uint32_t v, bool insideArea);
     void propagateList(int32_t h);
     void popVertex(uint32_t v);
+    // runToTargets: the largest distance at v from which some target can still be reached
+    // within its bound (max over targets of bound - straight way); 1-Lipschitz, so an
+    // edge's points have at most (budget(a) + budget(b) + length) / 2.
+    double budget(uint32_t v);
     // The vertex heap (a binary heap on distance with positions, for decrease-key).
     void heapUpdate(uint32_t v);
     uint32_t heapPop();
@@ -74,6 +95,14 @@ private:
     std::vector<Pending> batch_;
     uint64_t alive_ = 0;
     double maxDistance_ = kInfinity;
+    bool targeted_ = false;  // this run is a runToTargets: windows must fit the targets' budget
+    struct TargetPoint {
+        double x, y, z, bound;
+    };
+    std::vector<TargetPoint> targetPoints_;  // by decreasing bound
+    std::vector<double> budget_;
+    std::vector<uint32_t> budgetStamp_;  // budget_[v] holds for this run when equal to runStamp_
+    uint32_t runStamp_ = 0;
     ExactStats stats_;
 };
 

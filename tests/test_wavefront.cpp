@@ -104,6 +104,65 @@ TEST_CASE("wavefront: out-of-range sources are rejected", "[exact][wavefront]") 
     CHECK_THROWS_AS(ws.run(geo, {m.vertexCount()}, d), std::invalid_argument);
 }
 
+TEST_CASE("wavefront: a run to targets gives their distances bit for bit, and does less", "[exact][wavefront]") {
+    for (const auto& [name, mesh] : {std::pair<const char*, Mesh>{"bumpy torus", bumpyTorus(60, 30)},
+                                     {"noisy sphere", noisy(icosphere(4), 0.02, 5)},
+                                     {"holes", gridWithHoles(24, 5)}}) {
+        INFO(name);
+        ExactGeodesic geo(mesh);
+        WavefrontWorkspace ws;  // reused: a targeted run leaves nothing behind for a full one
+        const uint32_t n = mesh.vertexCount();
+        for (uint32_t s : {0u, n / 3}) {
+            INFO("source " << s);
+            std::vector<double> full;
+            ExactStats fullStats;
+            ws.run(geo, {s}, full, &fullStats);
+            // A cluster of targets half way out, each bounded by its edge path (never shorter),
+            // as the baker bounds a run by the composed overlay.
+            double farthest = 0;
+            for (double x : full)
+                if (x < kInfinity) farthest = std::max(farthest, x);
+            uint32_t centre = s;
+            for (uint32_t v = 0; v < n; ++v)
+                if (std::fabs(full[v] - 0.5 * farthest) < std::fabs(full[centre] - 0.5 * farthest)) centre = v;
+            std::vector<double> edges, nearCentre;
+            edgeDijkstra(geo.mesh(), s, edges);
+            edgeDijkstra(geo.mesh(), centre, nearCentre);
+            std::vector<WavefrontWorkspace::Target> targets;
+            for (uint32_t v = 0; v < n; ++v)
+                if (nearCentre[v] < 0.15 * farthest) targets.push_back({v, edges[v] * (1.0 + 1e-6)});
+            REQUIRE(targets.size() >= 3);
+            std::vector<double> got;
+            ExactStats stats;
+            ws.runToTargets(geo, s, targets, got, &stats);
+            for (const auto& t : targets) REQUIRE(got[t.vertex] == full[t.vertex]);
+            CHECK(stats.windowsPropagated < fullStats.windowsPropagated / 2);  // 13-27% here
+            // A bound below a target's distance gives +inf there, as a bounded run does.
+            std::vector<WavefrontWorkspace::Target> tight(targets);
+            tight[0].bound = full[tight[0].vertex] * 0.5;
+            ws.runToTargets(geo, s, tight, got);
+            CHECK(got[tight[0].vertex] == kInfinity);
+            for (size_t k = 1; k < tight.size(); ++k) CHECK(got[tight[k].vertex] == full[tight[k].vertex]);
+            ws.run(geo, {s}, got);
+            CHECK(got == full);
+        }
+    }
+}
+
+TEST_CASE("wavefront: a run to targets rejects bad sources, targets and bounds", "[exact][wavefront]") {
+    const Mesh m = planeGrid(4, 4);
+    ExactGeodesic geo(m);
+    WavefrontWorkspace ws;
+    std::vector<double> d;
+    const uint32_t n = m.vertexCount();
+    CHECK_THROWS_AS(ws.runToTargets(geo, n, {{0, 1.0}}, d), std::invalid_argument);
+    CHECK_THROWS_AS(ws.runToTargets(geo, 0, {{n, 1.0}}, d), std::invalid_argument);
+    CHECK_THROWS_AS(ws.runToTargets(geo, 0, {{1, -1.0}}, d), std::invalid_argument);
+    CHECK_THROWS_AS(ws.runToTargets(geo, 0, {{1, std::nan("")}}, d), std::invalid_argument);
+    ws.runToTargets(geo, 0, {{n - 1, 100.0}}, d);  // still usable after a refusal
+    CHECK(d[n - 1] == Approx(distance(m.positions[0], m.positions[n - 1])));
+}
+
 TEST_CASE("wavefront: CGAL's golden fields of the smaller shared meshes", "[exact][wavefront][golden]") {
     const std::string dir = test::sharedMeshDir();
     if (dir.empty()) {

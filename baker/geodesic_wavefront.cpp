@@ -7,6 +7,10 @@
 #include <stdexcept>
 #include <string>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace vorogeo {
 
 namespace {
@@ -354,13 +358,29 @@ void WavefrontWorkspace::propagate(const ExactGeodesic& geo, const std::vector<u
 double WavefrontWorkspace::budget(uint32_t v) {
     if (budgetStamp_[v] == runStamp_) return budget_[v];
     const Vec3 p = geo_->mesh_->positions[v];
+    const TargetLanes& t = targetLanes_;
+    // Targets by decreasing bound, two at a time (padded with -inf bounds): none after one
+    // whose bound is below the best can win. The maximum is the same whichever targets
+    // past that point are also looked at.
     double best = -kInfinity;
-    // Targets by decreasing bound: none after one whose bound is below the best can win.
-    for (const TargetPoint& t : targetPoints_) {
-        if (t.bound <= best) break;
-        const double dx = p.x - t.x, dy = p.y - t.y, dz = p.z - t.z;
-        best = std::max(best, t.bound - std::sqrt(dx * dx + dy * dy + dz * dz));
+#if defined(__SSE2__)
+    const __m128d px = _mm_set1_pd(p.x), py = _mm_set1_pd(p.y), pz = _mm_set1_pd(p.z);
+    __m128d lanes = _mm_set1_pd(-kInfinity);
+    for (size_t i = 0; i < t.bound.size(); i += 2) {
+        if (t.bound[i] <= best) break;
+        const __m128d dx = _mm_sub_pd(px, _mm_loadu_pd(&t.x[i])), dy = _mm_sub_pd(py, _mm_loadu_pd(&t.y[i])),
+                      dz = _mm_sub_pd(pz, _mm_loadu_pd(&t.z[i]));
+        const __m128d d2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy)), _mm_mul_pd(dz, dz));
+        lanes = _mm_max_pd(lanes, _mm_sub_pd(_mm_loadu_pd(&t.bound[i]), _mm_sqrt_pd(d2)));
+        best = std::max(_mm_cvtsd_f64(lanes), _mm_cvtsd_f64(_mm_unpackhi_pd(lanes, lanes)));
     }
+#else
+    for (size_t i = 0; i < t.bound.size(); ++i) {
+        if (t.bound[i] <= best) break;
+        const double dx = p.x - t.x[i], dy = p.y - t.y[i], dz = p.z - t.z[i];
+        best = std::max(best, t.bound[i] - std::sqrt(dx * dx + dy * dy + dz * dz));
+    }
+#endif
     budgetStamp_[v] = runStamp_;
     return budget_[v] = best;
 }
@@ -375,14 +395,25 @@ void WavefrontWorkspace::runToTargets(const ExactGeodesic& geo, uint32_t source,
         if (!(t.bound >= 0)) throw std::invalid_argument("target bound must be >= 0");
         maxBound = std::max(maxBound, t.bound);
     }
+    byBound_.resize(targets.size());
+    for (uint32_t i = 0; i < targets.size(); ++i) byBound_[i] = i;
+    std::sort(byBound_.begin(), byBound_.end(), [&](uint32_t x, uint32_t y) {
+        return targets[x].bound > targets[y].bound || (targets[x].bound == targets[y].bound && x < y);
+    });
     const std::vector<Vec3>& pos = geo.mesh().positions;
-    targetPoints_.clear();
-    for (const Target& t : targets) {
-        const Vec3 p = pos[t.vertex];
-        targetPoints_.push_back({p.x, p.y, p.z, t.bound});
+    TargetLanes& lanes = targetLanes_;
+    const size_t padded = (targets.size() + 1) / 2 * 2;
+    lanes.x.assign(padded, 0.0);
+    lanes.y.assign(padded, 0.0);
+    lanes.z.assign(padded, 0.0);
+    lanes.bound.assign(padded, -kInfinity);
+    for (size_t i = 0; i < targets.size(); ++i) {
+        const Target& t = targets[byBound_[i]];
+        lanes.x[i] = pos[t.vertex].x;
+        lanes.y[i] = pos[t.vertex].y;
+        lanes.z[i] = pos[t.vertex].z;
+        lanes.bound[i] = t.bound;
     }
-    std::sort(targetPoints_.begin(), targetPoints_.end(),
-              [](const TargetPoint& x, const TargetPoint& y) { return x.bound > y.bound; });
     if (budgetStamp_.size() != nv || runStamp_ == kNil) {
         budgetStamp_.assign(nv, 0);
         budget_.assign(nv, 0.0);
@@ -400,8 +431,8 @@ size_t WavefrontWorkspace::memoryBytes() const {
            (freeBlocks_.capacity() + listHead_.capacity() + listTail_.capacity() + heap_.capacity() +
             heapPos_.capacity()) * sizeof(uint32_t) +
            fifo_.capacity() * sizeof(int32_t) + state_.capacity() + batch_.capacity() * sizeof(Pending) +
-           targetPoints_.capacity() * sizeof(TargetPoint) + budget_.capacity() * sizeof(double) +
-           budgetStamp_.capacity() * sizeof(uint32_t);
+           (targetLanes_.x.capacity() * 4 + budget_.capacity()) * sizeof(double) +
+           (budgetStamp_.capacity() + byBound_.capacity()) * sizeof(uint32_t);
 }
 
 std::vector<double> wavefrontDistancesFrom(const ExactGeodesic& geo, uint32_t source) {

@@ -96,10 +96,11 @@ private:
     uint64_t alive_ = 0;
     double maxDistance_ = kInfinity;
     bool targeted_ = false;  // this run is a runToTargets: windows must fit the targets' budget
-    struct TargetPoint {
-        double x, y, z, bound;
+    struct TargetLanes {  // the targets' positions and bounds by decreasing bound
+        std::vector<double> x, y, z, bound;
     };
-    std::vector<TargetPoint> targetPoints_;  // by decreasing bound
+    TargetLanes targetLanes_;
+    std::vector<uint32_t> byBound_;
     std::vector<double> budget_;
     std::vector<uint32_t> budgetStamp_;  // budget_[v] holds for this run when equal to runStamp_
     uint32_t runStamp_ = 0;

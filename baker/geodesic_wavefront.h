@@ -39,8 +39,9 @@ public:
     // within its bound, +inf for one beyond it. A window is dropped once no path through it
     // can reach any target within that target's bound (its minimum plus the straight way
     // to the target, a lower bound of every such path, exceeds it), so a run does only
-    // the work between the source and the targets. Other vertices' distances are not
-    // meaningful afterwards. Throws as run() does.
+    // the work between the source and the targets. Give bounds a little slack for
+    // rounding (the exact first layer adds 1e-6 relative). Other vertices' distances are
+    // not meaningful afterwards. Throws as run() does, and on a negative or NaN bound.
     void runToTargets(const ExactGeodesic& geo, uint32_t source, const std::vector<Target>& targets,
                       std::vector<double>& distances, ExactStats* stats = nullptr);
 

@@ -139,13 +139,12 @@ void computeLayer(const Mesh& mesh, const std::vector<Patch>& patches, const std
                 s.targets.push_back({uint32_t(geo.localVertex(m.vertices[rows[k]])),
                                      (*upperBounds)[job.patch].at(source, rows[k]) * (1.0 + 1e-6)});
             s.workspace.runToTargets(geo, sourceVertex, s.targets, s.dist);
+            bool missed = false;
+            for (const WavefrontWorkspace::Target& t : s.targets) missed |= s.dist[t.vertex] == kInfinity;
+            if (missed) s.workspace.run(geo, {sourceVertex}, s.dist);
         } else {
             s.workspace.run(geo, {sourceVertex}, s.dist);
         }
-        bool missed = false;
-        for (uint32_t k = job.row + 1; k < m.rows; ++k)
-            missed |= s.dist[size_t(geo.localVertex(m.vertices[rows[k]]))] == kInfinity;
-        if (missed && upperBounds) s.workspace.run(geo, {sourceVertex}, s.dist);
         for (uint32_t k = job.row + 1; k < m.rows; ++k) {
             const uint32_t target = rows[k];
             m.upper[upperIndex(m.rows, std::min(source, target), std::max(source, target))] =

@@ -469,8 +469,8 @@ TEST_CASE("bake: every shared mesh bakes with defaults", "[bake][shared]") {
 TEST_CASE("bake: --exact-first-layer entries equal unbounded exact runs, for any thread count", "[bake]") {
     // The exact first layer runs to its remaining pairs, each bounded by the composed
     // overlay, in an order that leaves them close to its source (patch_geodesics.cpp):
-    // every entry must still be
-    // the exact distance on the first-layer patch plus its margin ring.
+    // every entry must still be the exact distance on the first-layer patch plus its
+    // margin ring.
     const Mesh mesh = smallBumpy();
     PartitionOptions po;
     po.firstLayerSeeds = 4;

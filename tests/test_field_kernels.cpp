@@ -94,8 +94,14 @@ TEST_CASE("field kernels: lowering from rows and decoding match a plain loop, bi
             std::vector<uint32_t> from(n + vg::kRowSlack, 7777);
             std::vector<float> entries(uint64_t(count) * stride + vg::kRowSlack);
             r.graph.avx512 = version == 2;
+            // Half of the calls also ask for a range of lines a share per row (the next
+            // patch's block): the same answers, and every line asked for by the last row.
+            vg::PrefetchDrip drip;
+            drip.set(r.bytes.data() + trial % 64, r.bytes.data() + r.bytes.size() - trial % 7);
+            const bool dripping = trial % 2 == 1;
             vg::lowerFromRows(version >= 1, r.graph, scale, rows.data(), bases.data(), tags.data(), count, n, best.data(),
-                              from.data(), entries.data(), stride);
+                              from.data(), entries.data(), stride, dripping ? &drip : nullptr);
+            if (dripping) REQUIRE(drip.lines() == 0);
             for (uint32_t j = 0; j < n; ++j) {
                 INFO("trial " << trial << " version " << version << " slot " << j);
                 REQUIRE(sameBits(best[j], refBest[j]));
@@ -112,6 +118,26 @@ TEST_CASE("field kernels: lowering from rows and decoding match a plain loop, bi
             for (uint32_t j = 0; j < n; ++j) REQUIRE(sameBits(decoded[j], entries[j]));
         }
     }
+}
+
+TEST_CASE("field kernels: a prefetch drip counts and asks for each line of its range once", "[runtime][kernels]") {
+    alignas(64) static uint8_t buffer[64 * 10];
+    vg::PrefetchDrip drip;
+    drip.clear();
+    REQUIRE(drip.lines() == 0);
+    drip.issue(3);  // nothing to ask for: no change
+    REQUIRE(drip.lines() == 0);
+    // [5, 64 * 3 + 1): lines 0 .. 3, the first and last partly.
+    drip.set(buffer + 5, buffer + 64 * 3 + 1);
+    REQUIRE(drip.lines() == 4);
+    drip.issue(3);
+    REQUIRE(drip.lines() == 1);
+    drip.issue(5);  // only what is left
+    REQUIRE(drip.lines() == 0);
+    drip.set(buffer + 64, buffer + 64 * 2);  // exactly one line
+    REQUIRE(drip.lines() == 1);
+    drip.set(buffer + 64, buffer + 64);  // empty
+    REQUIRE(drip.lines() == 0);
 }
 
 TEST_CASE("field kernels: crossings match crossing() of vg_graph.h, bit for bit, in both versions",

@@ -260,7 +260,7 @@ VG_AVX512 bool lowerRunAvx512(const PackedRun& run, float base, float scale, uin
 
 VG_AVX2 void lowerFromRowsAvx2(const vg_graph& g, float scale, const uint64_t* rows, const float* bases,
                                const uint32_t* tags, uint32_t count, uint32_t n, float* best, uint32_t* from,
-                               float* entries, uint32_t stride) {
+                               float* entries, uint32_t stride, PrefetchDrip* drip) {
     // The rows lie apart in the patch matrix, mostly out of the cache: ask for all of them
     // before the first is used, so that their loads overlap (igea's field: 1.14x).
     for (uint32_t r = 0; r < count; ++r) {
@@ -268,7 +268,9 @@ VG_AVX2 void lowerFromRowsAvx2(const vg_graph& g, float scale, const uint64_t* r
         const uintptr_t e = uintptr_t(g.secondDistances + ((3 * (rows[r] + n)) >> 1));
         for (uintptr_t x = b; x < e + 63; x += 64) __builtin_prefetch(reinterpret_cast<const void*>(x));
     }
+    const uint32_t share = drip != nullptr && count > 0 ? (drip->lines() + count - 1) / count : 0;
     for (uint32_t r = 0; r < count; ++r) {
+        if (share > 0) drip->issue(share);
         const PackedRun run{g.secondDistances, g.secondDistancesEnd, rows[r], n};
         const uint32_t tag = tags ? tags[r] : r;
         float* kept = entries ? entries + uint64_t(r) * stride : nullptr;
@@ -306,14 +308,17 @@ VG_AVX2 bool decodeAvx2(const PackedRun& run, float scale, float* out) {
 
 void lowerFromRows(bool avx2, const vg_graph& g, float scale, const uint64_t* rows, const float* bases,
                    const uint32_t* tags, uint32_t count, uint32_t n, float* best, uint32_t* from, float* entries,
-                   uint32_t stride) {
+                   uint32_t stride, PrefetchDrip* drip) {
 #if VG_FIELD_KERNELS_AVX2
-    if (avx2) return lowerFromRowsAvx2(g, scale, rows, bases, tags, count, n, best, from, entries, stride);
+    if (avx2) return lowerFromRowsAvx2(g, scale, rows, bases, tags, count, n, best, from, entries, stride, drip);
 #endif
     (void)avx2;
-    for (uint32_t r = 0; r < count; ++r)
+    const uint32_t share = drip != nullptr && count > 0 ? (drip->lines() + count - 1) / count : 0;
+    for (uint32_t r = 0; r < count; ++r) {
+        if (share > 0) drip->issue(share);
         lowerPortable(PackedRun{g.secondDistances, g.secondDistancesEnd, rows[r], n}, bases[r], scale, tags ? tags[r] : r,
                       best, from, entries ? entries + uint64_t(r) * stride : nullptr);
+    }
 }
 
 void decodeRow(bool avx2, const vg_graph& g, float scale, uint64_t row, uint32_t n, float* out) {

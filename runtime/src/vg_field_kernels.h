@@ -18,15 +18,33 @@ namespace vg {
 // whole vectors.
 constexpr uint32_t kRowSlack = 16;
 
+// Lines of memory asked for a share at a time while other work runs. A whole block (~100-200
+// lines) asked for at once holds more misses than a core keeps in flight: the prefetches
+// themselves stall, and the lines arrive no sooner (igea's field on a family-25 EPYC:
+// 1.16-1.19x on one thread with the block asked for a share per row, BENCHMARKS.md).
+struct PrefetchDrip {
+    uintptr_t next, end;  // the next line to ask for, and the end of the range
+    void set(const void* begin, const void* stop) {
+        next = uintptr_t(begin) & ~uintptr_t(63);
+        end = uintptr_t(stop);
+    }
+    void clear() { next = end = 0; }
+    uint32_t lines() const { return next < end ? uint32_t((end - next + 63) >> 6) : 0u; }
+    void issue(uint32_t count) {
+        for (; count > 0 && next < end; --count, next += 64) __builtin_prefetch(reinterpret_cast<const void*>(next));
+    }
+};
+
 // Lowers best[0..n) from `count` rows of patch matrix entries: row r starts at packed
 // index rows[r] and at distance bases[r]; best[j] = min(best[j], bases[r] + entry) over
 // the entries with a path, and from[j] = tags[r] (r when tags is null) for the first row
 // that gives the minimum. When `entries` is not null, row r's entries (entry * scale,
 // +inf for no path) are kept at entries + r * stride as well. With `avx2` and g.avx512,
-// sixteen entries at a time (the same bits).
+// sixteen entries at a time (the same bits). With `drip`, its lines are asked for a share
+// per row, all of them by the last row.
 void lowerFromRows(bool avx2, const vg_graph& g, float scale, const uint64_t* rows, const float* bases,
                    const uint32_t* tags, uint32_t count, uint32_t n, float* best, uint32_t* from, float* entries,
-                   uint32_t stride);
+                   uint32_t stride, PrefetchDrip* drip = nullptr);
 
 // Floats between kept rows of n entries: whole vectors.
 inline uint32_t entriesStride(uint32_t n) { return (n + 7) & ~7u; }

@@ -259,6 +259,7 @@ struct vg_workspace {
     uint8_t* slotThrough;          // ... 1 where it came through this patch's own row,
     float* slotBlank;              // ... and what slotSent and slotDist start a query at (at init)
     vg::ParallelFill parallel;     // vg_distance_field_parallel, on the query's workspace
+    vg::PrefetchDrip drip;         // the one-to-all query's next patch block, asked for while this one runs
     vg::Endpoint* targetEndpoints; // kTargetChunk resolved targets (vg_point_k_nearest)
     uint32_t* pathNodes;           // N + 1: a node chain being read off (vg_path)
     vg::PathLeg* pathLegs;         // kMaxPathLegs(N): the route's legs, then ...

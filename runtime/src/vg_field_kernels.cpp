@@ -268,7 +268,7 @@ VG_AVX2 void lowerFromRowsAvx2(const vg_graph& g, float scale, const uint64_t* r
         const uintptr_t e = uintptr_t(g.secondDistances + ((3 * (rows[r] + n)) >> 1));
         for (uintptr_t x = b; x < e + 63; x += 64) __builtin_prefetch(reinterpret_cast<const void*>(x));
     }
-    const uint32_t share = drip != nullptr && count > 0 ? (drip->lines() + count - 1) / count : 0;
+    const uint32_t share = drip != nullptr ? drip->share(count) : 0;
     for (uint32_t r = 0; r < count; ++r) {
         if (share > 0) drip->issue(share);
         const PackedRun run{g.secondDistances, g.secondDistancesEnd, rows[r], n};
@@ -313,7 +313,7 @@ void lowerFromRows(bool avx2, const vg_graph& g, float scale, const uint64_t* ro
     if (avx2) return lowerFromRowsAvx2(g, scale, rows, bases, tags, count, n, best, from, entries, stride, drip);
 #endif
     (void)avx2;
-    const uint32_t share = drip != nullptr && count > 0 ? (drip->lines() + count - 1) / count : 0;
+    const uint32_t share = drip != nullptr ? drip->share(count) : 0;
     for (uint32_t r = 0; r < count; ++r) {
         if (share > 0) drip->issue(share);
         lowerPortable(PackedRun{g.secondDistances, g.secondDistancesEnd, rows[r], n}, bases[r], scale, tags ? tags[r] : r,

@@ -30,6 +30,8 @@ struct PrefetchDrip {
     }
     void clear() { next = end = 0; }
     uint32_t lines() const { return next < end ? uint32_t((end - next + 63) >> 6) : 0u; }
+    // Lines to ask for at each of `parts` steps so that all are asked for by the last.
+    uint32_t share(uint32_t parts) const { return parts > 0 ? (lines() + parts - 1) / parts : 0u; }
     void issue(uint32_t count) {
         for (; count > 0 && next < end; --count, next += 64) __builtin_prefetch(reinterpret_cast<const void*>(next));
     }

@@ -101,7 +101,10 @@ void codeDistances(std::vector<uint8_t>& payload, uint64_t flatbufferSize, bool 
     }
     // Last: every coding above predicts from the plain positions and reads the plain
     // indices.
-    forEachCodedSequence(g, [&](const flatbuffers::Vector<uint32_t>* v) { vg_code_sequence(indicesIn(v), v->size(), 0); });
+    forEachCodedSequence(g, [&](const uint32_t* data, uint64_t size) {
+        vg_code_sequence(reinterpret_cast<uint32_t*>(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(data) - flatbuffer.data())),
+                         size, 0);
+    });
     vg_code_positions(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(positions) - flatbuffer.data()),
                       g->positions()->size(), 0);
 }

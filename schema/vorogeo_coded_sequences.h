@@ -8,14 +8,24 @@
 
 namespace vorogeo {
 
-// Calls visit(array) for each such array of g that is present, in a fixed order.
+// Calls visit(data, size) for each such array of g that is present and not empty, in a
+// fixed order. Every array's place and length are read before the first visit: decoding
+// one array in place may rewrite another's length field (a crafted blob can lay one over
+// the other's), and a length read after that could send the next visit past the buffer.
 template <class Visit>
 void forEachCodedSequence(const fb::Graph* g, Visit&& visit) {
     const flatbuffers::Vector<uint32_t>* arrays[] = {g->node_vertex(),     g->slots(),           g->node_edge(),
                                                      g->node_second_begin(), g->node_first_begin(), g->node_edge_begin(),
                                                      g->hub_exit_list_begin()};
-    for (const flatbuffers::Vector<uint32_t>* a : arrays)
-        if (a != nullptr && a->size() > 0) visit(a);
+    constexpr size_t kArrays = sizeof arrays / sizeof arrays[0];
+    const uint32_t* data[kArrays];
+    uint32_t size[kArrays];
+    for (size_t i = 0; i < kArrays; ++i) {
+        data[i] = arrays[i] ? arrays[i]->data() : nullptr;
+        size[i] = arrays[i] ? arrays[i]->size() : 0;
+    }
+    for (size_t i = 0; i < kArrays; ++i)
+        if (size[i] > 0) visit(data[i], uint64_t(size[i]));
 }
 
 }  // namespace vorogeo

@@ -689,6 +689,46 @@ TEST_CASE("runtime: a coded blob whose decoded arrays share bytes with others is
     CHECK(openStatus(sealContainer(flatbuffer, VG_FLAG_CODED_DISTANCES, 0)) == VG_ERR_CORRUPT_STRUCTURE);
 }
 
+TEST_CASE("runtime: a coded sequence laid over another's length decodes within the buffer and is refused",
+          "[runtime][coding]") {
+    // node_vertex, the first coded sequence decoded, is pointed at a one-entry vector whose
+    // only entry is the length field of a later coded sequence (its data shares no byte with
+    // any array, so the overlap checks let it through). Decoding node_vertex rewrites that
+    // length; an odd length decodes to a huge one, which the later sequence's decoding must
+    // not follow past the buffer (CI's fuzzer found this in session 61's try).
+    const uint16_t later[] = {fb::Graph::VT_SLOTS, fb::Graph::VT_NODE_EDGE, fb::Graph::VT_NODE_SECOND_BEGIN,
+                              fb::Graph::VT_NODE_FIRST_BEGIN, fb::Graph::VT_NODE_EDGE_BEGIN};
+    // Returns whether the case could be laid out over `field`'s length.
+    auto layOver = [](std::vector<uint8_t> flatbuffer, uint16_t field) {
+        const auto* table = reinterpret_cast<const flatbuffers::Table*>(fb::GetGraph(flatbuffer.data()));
+        const auto* victim = table->GetPointer<const flatbuffers::Vector<uint32_t>*>(field);
+        if (victim == nullptr || victim->size() % 2 == 0) return false;  // an even length decodes smaller
+        const uint8_t* length = reinterpret_cast<const uint8_t*>(victim);
+        const uint8_t* slot = table->GetAddressOf(fb::Graph::VT_NODE_VERTEX);
+        REQUIRE(slot != nullptr);
+        REQUIRE(length - 4 > slot);
+        const uint32_t one = 1, offset = uint32_t(length - 4 - slot);
+        std::memcpy(flatbuffer.data() + (length - 4 - flatbuffer.data()), &one, 4);  // the new vector's length
+        std::memcpy(flatbuffer.data() + (slot - flatbuffer.data()), &offset, 4);
+        flatbuffers::Verifier verifier(flatbuffer.data(), flatbuffer.size());
+        if (!fb::VerifyGraphBuffer(verifier)) return false;  // the word before was structure
+        const fb::Graph* g = fb::GetGraph(flatbuffer.data());
+        REQUIRE(g->node_vertex()->size() == 1);
+        REQUIRE(reinterpret_cast<const uint8_t*>(g->node_vertex()->data()) == length);
+        CHECK(openStatus(sealContainer(flatbuffer, VG_FLAG_CODED_DISTANCES, 0)) == VG_ERR_CORRUPT_STRUCTURE);
+        return true;
+    };
+    int built = 0;
+    for (int side = 9; side <= 14 && built == 0; ++side) {  // until some later length is odd
+        const std::vector<uint8_t> blob = bakeBlob(planeGrid(side, side, 1.0), false, 4);
+        std::vector<uint8_t> coded(blob.begin() + VG_CONTAINER_HEADER_SIZE, blob.end());
+        codeDistances(coded);
+        REQUIRE(openStatus(sealContainer(coded, VG_FLAG_CODED_DISTANCES, 0)) == VG_OK);
+        for (uint16_t field : later) built += layOver(coded, field);
+    }
+    CHECK(built > 0);
+}
+
 TEST_CASE("runtime: accuracy against the golden pairs of the shared meshes", "[runtime][shared]") {
     const std::string dir = test::sharedMeshDir();
     if (dir.empty()) {

@@ -210,7 +210,14 @@ bool decodedArraysApart(const vorogeo::fb::Graph* g) {
     add(g->face_twin());
     add(g->vertex_halfedge());
     add(g->second_edges());  // its lengths
-    vorogeo::forEachCodedSequence(g, add);
+    vorogeo::forEachCodedSequence(g, [&](const uint32_t* data, uint64_t size) {
+        if (n == kCapacity) {
+            full = true;
+            return;
+        }
+        const uint8_t* b = reinterpret_cast<const uint8_t*>(data);
+        all[n++] = Range{b, b + size * sizeof(uint32_t)};
+    });
     const uint32_t decoded = n;
     add(g->vertex_patch());
     add(g->vertex_slot());
@@ -365,8 +372,8 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, const Tabl
     if (codedTopology) {
         if (!decodedArraysApart(g)) return VG_ERR_CORRUPT_STRUCTURE;
         // Any bytes decode to some indices, which are checked below as in an uncoded blob.
-        vorogeo::forEachCodedSequence(g, [](const flatbuffers::Vector<uint32_t>* v) {
-            vg_code_sequence(const_cast<uint32_t*>(v->data()), v->size(), 1);
+        vorogeo::forEachCodedSequence(g, [](const uint32_t* data, uint64_t size) {
+            vg_code_sequence(const_cast<uint32_t*>(data), size, 1);
         });
         // The arrays are apart from each other, but a crafted blob can lay a coded sequence
         // over the flatbuffer's own structure (a table's offsets, a vtable, a vector's

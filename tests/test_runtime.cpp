@@ -15,6 +15,7 @@
 #endif
 
 #include "bake.h"
+#include "blob_reader.h"
 #include "blob_test_helpers.h"
 #include "blob_writer.h"
 #include "distance_coding.h"
@@ -686,7 +687,12 @@ TEST_CASE("runtime: a coded blob whose decoded arrays share bytes with others is
     const uint32_t offset = uint32_t(target - field);
     std::memcpy(flatbuffer.data() + (field - flatbuffer.data()), &offset, 4);
     REQUIRE(fb::GetGraph(flatbuffer.data())->face_twin() == fb::GetGraph(flatbuffer.data())->face_vertices());
-    CHECK(openStatus(sealContainer(flatbuffer, VG_FLAG_CODED_DISTANCES, 0)) == VG_ERR_CORRUPT_STRUCTURE);
+    const std::vector<uint8_t> crafted = sealContainer(flatbuffer, VG_FLAG_CODED_DISTANCES, 0);
+    CHECK(openStatus(crafted) == VG_ERR_CORRUPT_STRUCTURE);
+    tools::BlobContents contents;  // the tools' reader relies on the runtime's check before it decodes
+    std::string error;
+    CHECK_FALSE(tools::unpackBlob(crafted, contents, error));
+    CHECK(error.find("the runtime refuses the blob") != std::string::npos);
 }
 
 TEST_CASE("runtime: a coded sequence laid over another's length decodes within the buffer and is refused",
@@ -715,7 +721,12 @@ TEST_CASE("runtime: a coded sequence laid over another's length decodes within t
         const fb::Graph* g = fb::GetGraph(flatbuffer.data());
         REQUIRE(g->node_vertex()->size() == 1);
         REQUIRE(reinterpret_cast<const uint8_t*>(g->node_vertex()->data()) == length);
-        CHECK(openStatus(sealContainer(flatbuffer, VG_FLAG_CODED_DISTANCES, 0)) == VG_ERR_CORRUPT_STRUCTURE);
+        const std::vector<uint8_t> crafted = sealContainer(flatbuffer, VG_FLAG_CODED_DISTANCES, 0);
+        CHECK(openStatus(crafted) == VG_ERR_CORRUPT_STRUCTURE);
+        tools::BlobContents contents;  // the tools' reader, which decodes in place too: refused (for any reason)
+        std::string error;
+        CHECK_FALSE(tools::unpackBlob(crafted, contents, error));
+        CHECK_FALSE(error.empty());
         return true;
     };
     int built = 0;

@@ -6,6 +6,7 @@
 
 #include <zstd.h>
 
+#include "runtime_graph.h"
 #include "vorogeo_coded_sequences.h"
 #include "vorogeo_container.h"
 #include "vorogeo_distance_coding.h"
@@ -16,11 +17,28 @@ namespace vorogeo::tools {
 
 namespace {
 
+// Where a coded blob is decoded. Every decoded array lies apart from every other (the
+// runtime's validation, which the blob has passed, checks that), but one may lie over the
+// flatbuffer's own structure (offsets, vtables, lengths), which decoding it would rewrite:
+// so the structure is read from `plain`, an untouched copy, and the decoded values are
+// written to and read from `out` at the same offsets. Nothing is then read through a
+// structure that decoding changed.
+struct Decoding {
+    const fb::Graph* g;  // in plain
+    const uint8_t* plain;
+    uint8_t* out;
+    // The place in `out` of what lies at p in `plain`.
+    template <class T>
+    T* at(const T* p) const {
+        return reinterpret_cast<T*>(out + (reinterpret_cast<const uint8_t*>(p) - plain));
+    }
+};
+
 // Decodes the hub-label tables in place (schema/vorogeo_label_coding.h), when there are
 // labels, after checking the table ranges the decoder reads (the first-layer slots and the
 // nodes' vertices are checked by decodeDistances before).
-bool decodeLabels(BlobContents& blob, std::string& error) {
-    const fb::Graph* g = blob.graph();
+bool decodeLabels(const Decoding& d, BlobContents& blob, std::string& error) {
+    const fb::Graph* g = d.g;
     const auto* tree = g->hub_tree();
     if (!tree || tree->size() == 0) return true;
     const uint64_t T = tree->size(), S1 = g->first_patches()->size(), nodes = g->node_vertex()->size();
@@ -70,54 +88,47 @@ bool decodeLabels(BlobContents& blob, std::string& error) {
                 return false;
             }
     }
-    if (blob.innerRowsAtOpen) {  // zeros stand for them (schema/vorogeo_inner_rows.h)
-        for (uint64_t e = 0; e < innerCount; ++e)
-            if (inner[e] != 0) {
-                error = "the inner rows left to the readers are not zeros";
-                return false;
-            }
-        return true;
-    }
+    if (blob.innerRowsAtOpen) return true;  // zeros stand for them (checked by storedZerosAreZeros)
     vg_label_planes(reinterpret_cast<unsigned char*>(inner), innerCount, planes.data(), 0);
     const float inverseScale = 1.0f / g->hub_label_scale();
     for (uint32_t p = 0; p < S1; ++p) {
         const fb::PatchRecord* patch = g->first_patches()->Get(p);
         const uint32_t r0 = g->hub_inner_begin()->Get(p);
-        const vg_label_sites sites{g->positions()->data(), g->node_vertex()->data(), g->hub_inner_node()->data() + r0,
-                                   g->slots()->data() + patch->slot_begin(), inverseScale};
+        const vg_label_sites sites{d.at(g->positions()->data()), d.at(g->node_vertex()->data()),
+                                   g->hub_inner_node()->data() + r0, d.at(g->slots()->data()) + patch->slot_begin(),
+                                   inverseScale};
         vg_code_label_table(inner, inner, g->hub_inner_matrix_begin()->Get(p), g->hub_inner_begin()->Get(p + 1) - r0,
                             patch->slot_count(), &sites, detours.data(), 1);
     }
     return true;
 }
 
-// Decodes the mesh topology's indices in place (schema/vorogeo_topology_coding.h): any
-// bytes decode to some indices, which the readers check as in an uncoded blob.
-bool decodeTopology(std::vector<uint8_t>& flatbuffer, std::string& error) {
-    const fb::Graph* g = fb::GetGraph(flatbuffer.data());
+// Decodes the mesh topology's indices (schema/vorogeo_topology_coding.h): any bytes decode
+// to some indices, which the readers check as in an uncoded blob.
+bool decodeTopology(const Decoding& d, std::string& error) {
+    const fb::Graph* g = d.g;
     if (!g->face_vertices() || !g->face_twin() || !g->vertex_halfedge() ||
         g->face_vertices()->size() != g->face_twin()->size()) {
         error = "coded topology without its arrays";
         return false;
     }
-    auto indicesOf = [&](const flatbuffers::Vector<uint32_t>* v) {
-        return reinterpret_cast<uint32_t*>(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(v->data()) - flatbuffer.data()));
-    };
-    vg_code_topology(indicesOf(g->face_vertices()), indicesOf(g->face_twin()), g->face_twin()->size(),
-                     indicesOf(g->vertex_halfedge()), g->vertex_halfedge()->size(), 1);
+    vg_code_topology(d.at(g->face_vertices()->data()), d.at(g->face_twin()->data()), g->face_twin()->size(),
+                     d.at(g->vertex_halfedge()->data()), g->vertex_halfedge()->size(), 1);
     return true;
 }
 
 // Sets the patch edges' lengths (stored as 0 in a coded blob) from the positions of their
 // ends (schema/vorogeo_topology_coding.h), after checking the ranges it reads; the patches'
 // node slots are checked by decodeDistances before.
-bool decodePatchEdgeLengths(std::vector<uint8_t>& flatbuffer, std::string& error) {
-    const fb::Graph* g = fb::GetGraph(flatbuffer.data());
+bool decodePatchEdgeLengths(const Decoding& d, std::string& error) {
+    const fb::Graph* g = d.g;
     const auto* edges = g->second_edges();
     const auto* patches = g->second_patches();
     if (!edges || edges->size() == 0) return true;
     static_assert(sizeof(fb::PatchEdge) == VG_PATCH_EDGE_BYTES, "PatchEdge layout");
-    uint8_t* bytes = flatbuffer.data() + (edges->Data() - flatbuffer.data());
+    uint8_t* bytes = d.at(edges->Data());
+    const float* positions = d.at(g->positions()->data());
+    const uint32_t* nodeVertex = d.at(g->node_vertex()->data());
     for (uint32_t i = 0; i < patches->size(); ++i) {
         const fb::PatchRecord* p = patches->Get(i);
         const uint64_t begin = p->edge_begin(), end = i + 1 < patches->size() ? patches->Get(i + 1)->edge_begin() : edges->size();
@@ -125,52 +136,36 @@ bool decodePatchEdgeLengths(std::vector<uint8_t>& flatbuffer, std::string& error
             error = "a patch's edges lie outside their array";
             return false;
         }
-        const uint32_t* slots = g->slots()->data() + p->slot_begin();
+        const uint32_t* slots = d.at(g->slots()->data()) + p->slot_begin();
         for (uint64_t e = begin; e < end; ++e) {
             const fb::PatchEdge* E = edges->Get(uint32_t(e));
             if (E->from() >= p->node_count() || E->to() >= p->node_count()) {
                 error = "a patch edge's end is not a node slot of its patch";
                 return false;
             }
-            if (E->length() != 0.0f) {
-                error = "a coded blob stores a patch edge length (readers compute them)";
-                return false;
-            }
-            const float length = vg_patch_edge_length(g->positions()->data(), g->node_vertex()->Get(slots[E->from()]),
-                                                      g->node_vertex()->Get(slots[E->to()]));
+            const float length = vg_patch_edge_length(positions, nodeVertex[slots[E->from()]], nodeVertex[slots[E->to()]]);
             std::memcpy(bytes + VG_PATCH_EDGE_BYTES * e + VG_PATCH_EDGE_LENGTH_AT, &length, sizeof length);
         }
     }
     return true;
 }
 
-// Decodes the distances in place (schema/vorogeo_distance_coding.h) after checking that
-// every patch's slots, slot ids and matrix lie inside their arrays; the runtime checks all
-// of that and more in vg_validate, the tools only what the decoder reads.
-bool decodeDistances(BlobContents& blob, std::string& error) {
-    std::vector<uint8_t>& flatbuffer = blob.flatbuffer;
-    const fb::Graph* g = fb::GetGraph(flatbuffer.data());
-    if (!g->positions() || !g->slots() || !g->node_vertex() || !g->second_patches() || !g->first_patches() ||
-        !g->second_distances() || !g->first_distances()) {
-        error = "coded distances without the arrays they are decoded from";
-        return false;
-    }
-    // The positions and index sequences first: the other arrays are predicted from them.
-    vg_code_positions(flatbuffer.data() + (g->positions()->Data() - flatbuffer.data()), g->positions()->size(), 1);
-    forEachCodedSequence(g, [&](const flatbuffers::Vector<uint32_t>* v) {
-        vg_code_sequence(reinterpret_cast<uint32_t*>(flatbuffer.data() + (v->Data() - flatbuffer.data())), v->size(), 1);
-    });
+// Decodes the distances (schema/vorogeo_distance_coding.h), after checking that every
+// patch's slots, slot ids and matrix lie inside their arrays.
+bool decodeLayers(const Decoding& d, std::string& error) {
+    const fb::Graph* g = d.g;
     const uint64_t vertices = g->positions()->size() / 3, nodes = g->node_vertex()->size();
     const uint64_t slotCount = g->slots()->size();
-    for (uint32_t n : *g->node_vertex())
-        if (n >= vertices) {
+    const float* positions = d.at(g->positions()->data());
+    const uint32_t* nodeVertex = d.at(g->node_vertex()->data());
+    for (uint64_t n = 0; n < nodes; ++n)
+        if (nodeVertex[n] >= vertices) {
             error = "a node's vertex is out of range";
             return false;
         }
-    auto bytesOf = [&](const flatbuffers::Vector<uint8_t>* v) { return flatbuffer.data() + (v->data() - flatbuffer.data()); };
     auto decodeLayer = [&](const flatbuffers::Vector<const fb::PatchRecord*>* patches, const flatbuffers::Vector<uint8_t>* array,
                            bool firstLayer) {
-        uint8_t* packed = bytesOf(array);
+        uint8_t* packed = d.at(array->data());
         const uint64_t capacity = vg_coding_entries(array->size());
         std::vector<unsigned char> planeScratch(VG_CODING_PLANE_SCRATCH);
         vg_code_planes(packed, capacity, planeScratch.data(), 1);
@@ -182,13 +177,13 @@ bool decodeDistances(BlobContents& blob, std::string& error) {
                 error = "a patch's slots or matrix lie outside their arrays";
                 return false;
             }
-            const uint32_t* slots = g->slots()->data() + p->slot_begin();
+            const uint32_t* slots = d.at(g->slots()->data()) + p->slot_begin();
             for (uint64_t i = 0; i < S; ++i)
                 if (i < n ? slots[i] >= nodes : slots[i] >= vertices) {
                     error = "a patch slot is out of range";
                     return false;
                 }
-            const vg_coding_slots s{g->positions()->data(), slots, g->node_vertex()->data(), uint32_t(n)};
+            const vg_coding_slots s{positions, slots, nodeVertex, uint32_t(n)};
             if (firstLayer)
                 vg_code_first_matrix(packed, packed, p->matrix_begin(), uint32_t(S), p->scale(), &s, 1);
             else
@@ -197,8 +192,83 @@ bool decodeDistances(BlobContents& blob, std::string& error) {
         return true;
     };
     return decodeLayer(g->second_patches(), g->second_distances(), false) &&
-           decodeLayer(g->first_patches(), g->first_distances(), true) && decodeLabels(blob, error) &&
-           decodeTopology(flatbuffer, error) && decodePatchEdgeLengths(flatbuffer, error);
+           decodeLayer(g->first_patches(), g->first_distances(), true);
+}
+
+// What a coded blob must store as zeros, checked before anything else so that the reason
+// is named (the runtime's refusal gives only a status): the patch edges' lengths, which
+// readers compute, and inner rows left to vg_open.
+bool storedZerosAreZeros(const BlobContents& blob, std::string& error) {
+    const fb::Graph* g = blob.graph();
+    if (g->second_edges())
+        for (const fb::PatchEdge* e : *g->second_edges())
+            if (e->length() != 0.0f) {
+                error = "a coded blob stores a patch edge length (readers compute them)";
+                return false;
+            }
+    if (blob.innerRowsAtOpen)  // zeros stand for them (schema/vorogeo_inner_rows.h)
+        for (uint16_t entry : blob.hubInner)
+            if (entry != 0) {
+                error = "the inner rows left to the readers are not zeros";
+                return false;
+            }
+    return true;
+}
+
+// Decodes a coded blob's arrays in place, so that `flatbuffer` holds plain values. The
+// blob is first opened with the runtime, whose validation (every array's bounds, the
+// decoded arrays apart from all others, every decoded index in range) the decoding here
+// relies on; the tools check again what they read.
+bool decodeBlob(const std::vector<uint8_t>& bytes, BlobContents& blob, std::string& error) {
+    if (!storedZerosAreZeros(blob, error)) return false;
+    {
+        RuntimeGraph runtime;
+        std::string refused;
+        if (!runtime.open(bytes, refused)) {
+            error = "the runtime refuses the blob: " + refused;
+            return false;
+        }
+    }
+    std::vector<uint8_t>& flatbuffer = blob.flatbuffer;
+    const fb::Graph* coded = fb::GetGraph(flatbuffer.data());
+    if (!coded->positions() || !coded->slots() || !coded->node_vertex() || !coded->second_patches() ||
+        !coded->first_patches() || !coded->second_distances() || !coded->first_distances()) {
+        error = "coded distances without the arrays they are decoded from";
+        return false;
+    }
+    // The index sequences first, as the runtime decodes them: in place, then the structure
+    // verified again (what the runtime validated is the structure after them).
+    forEachCodedSequence(coded, [&](const uint32_t* data, uint64_t size) {
+        vg_code_sequence(reinterpret_cast<uint32_t*>(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(data) - flatbuffer.data())),
+                         size, 1);
+    });
+    const std::vector<uint8_t> plain = flatbuffer;
+    {
+        flatbuffers::Verifier verifier(plain.data(), plain.size());
+        if (!fb::VerifyGraphBuffer(verifier)) {
+            error = "a coded index sequence lies over the flatbuffer's structure";
+            return false;
+        }
+    }
+    const Decoding d{fb::GetGraph(plain.data()), plain.data(), flatbuffer.data()};
+    const fb::Graph* g = d.g;
+    if (!g->positions() || !g->slots() || !g->node_vertex() || !g->second_patches() || !g->first_patches() ||
+        !g->second_distances() || !g->first_distances()) {
+        error = "coded distances without the arrays they are decoded from";
+        return false;
+    }
+    // The positions before the rest: the other arrays are predicted from them.
+    vg_code_positions(d.at(g->positions()->Data()), g->positions()->size(), 1);
+    if (!decodeLayers(d, error) || !decodeLabels(d, blob, error) || !decodeTopology(d, error) ||
+        !decodePatchEdgeLengths(d, error))
+        return false;
+    // What the tools read next goes through the decoded buffer's own structure.
+    flatbuffers::Verifier verifier(flatbuffer.data(), flatbuffer.size());
+    if (!fb::VerifyGraphBuffer(verifier)) {
+        error = "a coded array lies over the flatbuffer's structure";
+        return false;
+    }
+    return true;
 }
 
 }  // namespace
@@ -291,7 +361,7 @@ bool unpackBlob(const std::vector<uint8_t>& bytes, BlobContents& out, std::strin
     }
     all.resize(size_t(size));  // (g points into the old buffer from here)
     all.shrink_to_fit();
-    return !out.coded || decodeDistances(out, error);
+    return !out.coded || decodeBlob(bytes, out, error);
 }
 
 bool readBlobFile(const std::string& path, BlobContents& out, std::string& error) {

@@ -1,7 +1,7 @@
 // Reading a .vgeo blob on the tool side: container checks (magic, format version, flags,
 // sizes, checksum), zstd decompression, the flatbuffers verifier and the decoding of
-// prediction-coded distances (after checking the ranges it reads), so that `flatbuffer`
-// always holds plain quanta. The engine-side
+// prediction-coded arrays (after the runtime's own validation of the blob, and checking
+// the ranges it reads), so that `flatbuffer` always holds plain values. The engine-side
 // reader is the runtime's; this one serves the tools and the tests.
 #pragma once
 

@@ -12,6 +12,8 @@
 //   4: the same flagged as coded, uncompressed;
 //   5: the same, zstd-compressed, coded and flagged as leaving the inner rows to vg_open
 //      (the runtime computes them for whatever labelled flatbuffer passes validation).
+// The tools' reader (tools/blob_reader.h, behind `vorogeo info`) reads every input too,
+// and may accept a coded blob only if the runtime does.
 // Nothing may crash, read out of bounds or trip UBSan; every status must be a known one.
 #include <algorithm>
 #include <cmath>
@@ -19,8 +21,10 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 #include <vector>
 
+#include "blob_reader.h"
 #include "blob_writer.h"
 #include "vorogeo.h"
 #include "vorogeo_container.h"
@@ -225,6 +229,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const vg_graph* g = nullptr;
     const vg_status st = vg_open(bytes, blob.size(), memory.data(), need, &g);
     check(st);
+    {
+        vorogeo::tools::BlobContents contents;
+        std::string error;
+        const bool read = vorogeo::tools::unpackBlob(blob, contents, error);
+        if (read != error.empty()) std::abort();  // a reason exactly when refused
+        if (read && contents.coded && st != VG_OK) std::abort();
+    }
     if (st != VG_OK) {
         if (g != nullptr) std::abort();
         return 0;

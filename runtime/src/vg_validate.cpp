@@ -179,8 +179,8 @@ bool exitListsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
 }
 
 // A coded blob's distance, topology, sequence and position arrays and patch edge lengths
-// are decoded where they lie, after (or, for all but the distances, while) the other
-// arrays are checked. The flatbuffers verifier lets two vectors share bytes, so a crafted
+// are decoded where they lie: the index sequences first (the structure then verified
+// again), the rest after every other array is checked. The flatbuffers verifier lets two vectors share bytes, so a crafted
 // blob could make decoding rewrite indices that were already found in range: each decoded
 // array must share no byte with any array the runtime reads. Everything a query reads is
 // listed here.
@@ -450,10 +450,6 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, const Tabl
     for (uint64_t k = 0; k < K; ++k)
         if (!finite(out.landmarkScale[k]) || out.landmarkScale[k] < 0.0f || g->landmark_vertex()->Get(k) >= V)
             return VG_ERR_CORRUPT_CONTENT;
-    if (codedTopology) vg_code_positions(const_cast<float*>(out.positions), 3 * V, 1);
-    for (uint64_t i = 0; i < 3 * V; ++i)
-        if (!finite(out.positions[i])) return VG_ERR_CORRUPT_CONTENT;
-
     // Patches of both layers, then their slot lists.
     if (!patchesValid(out.second, S2, slotCount, vg_coding_entries(count(g->second_distances())), S1, false) ||
         !patchesValid(out.first, S1, slotCount, vg_coding_entries(count(g->first_distances())), 0, true) ||
@@ -527,6 +523,15 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, const Tabl
             return VG_ERR_CORRUPT_CONTENT;
     }
 
+    if (!hubsValid(g, size, tables, out)) return VG_ERR_CORRUPT_CONTENT;
+
+    // Last, the arrays a coded blob decodes where they lie. Nothing is read through the
+    // flatbuffer's structure from here on: a decoded array may lie over it (the arrays are
+    // apart from each other, not from the tables' offsets or the vectors' lengths), so
+    // decoding may rewrite it.
+    if (codedTopology) vg_code_positions(const_cast<float*>(out.positions), 3 * V, 1);
+    for (uint64_t i = 0; i < 3 * V; ++i)
+        if (!finite(out.positions[i])) return VG_ERR_CORRUPT_CONTENT;
     if (codedTopology) {
         vg_code_topology(const_cast<uint32_t*>(out.faceVertices), const_cast<uint32_t*>(out.faceTwin),
                          3 * uint64_t(out.faceCount), const_cast<uint32_t*>(out.vertexHalfedge), V, 1);
@@ -542,7 +547,6 @@ vg_status verifyAndBind(const unsigned char* flatbuffer, size_t size, const Tabl
         }
     }
     if (!facesValid(out)) return VG_ERR_CORRUPT_CONTENT;
-    if (!hubsValid(g, size, tables, out)) return VG_ERR_CORRUPT_CONTENT;
 
     graph = out;
     return VG_OK;

@@ -19,7 +19,7 @@ bool looksLikeBlob(const std::string& path) {
 int printBlobInfo(const std::string& path, bool json) {
     BlobContents blob;
     std::string error;
-    if (!readBlobFile(path, blob, error)) {
+    if (!readBlobFile(path, blob, error, /*decode=*/false)) {  // what is printed is stored uncoded
         std::fprintf(stderr, "vorogeo info: %s\n", error.c_str());
         return 1;
     }

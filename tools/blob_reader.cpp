@@ -273,7 +273,7 @@ bool decodeBlob(const std::vector<uint8_t>& bytes, BlobContents& blob, std::stri
 
 }  // namespace
 
-bool unpackBlob(const std::vector<uint8_t>& bytes, BlobContents& out, std::string& error) {
+bool unpackBlob(const std::vector<uint8_t>& bytes, BlobContents& out, std::string& error, bool decode) {
     if (bytes.size() < VG_CONTAINER_HEADER_SIZE) {
         error = "too short for a vorogeo blob (" + std::to_string(bytes.size()) + " bytes)";
         return false;
@@ -361,17 +361,17 @@ bool unpackBlob(const std::vector<uint8_t>& bytes, BlobContents& out, std::strin
     }
     all.resize(size_t(size));  // (g points into the old buffer from here)
     all.shrink_to_fit();
-    return !out.coded || decodeBlob(bytes, out, error);
+    return !out.coded || !decode || decodeBlob(bytes, out, error);
 }
 
-bool readBlobFile(const std::string& path, BlobContents& out, std::string& error) {
+bool readBlobFile(const std::string& path, BlobContents& out, std::string& error, bool decode) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         error = path + ": cannot open";
         return false;
     }
     const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (!unpackBlob(bytes, out, error)) {
+    if (!unpackBlob(bytes, out, error, decode)) {
         error = path + ": " + error;
         return false;
     }

@@ -1,7 +1,8 @@
 // Reading a .vgeo blob on the tool side: container checks (magic, format version, flags,
 // sizes, checksum), zstd decompression, the flatbuffers verifier and the decoding of
 // prediction-coded arrays (after the runtime's own validation of the blob, and checking
-// the ranges it reads), so that `flatbuffer` always holds plain values. The engine-side
+// the ranges it reads), so that `flatbuffer` holds plain values (unless asked not to
+// decode, below). The engine-side
 // reader is the runtime's; this one serves the tools and the tests.
 #pragma once
 
@@ -25,8 +26,11 @@ struct BlobContents {
 };
 
 // False with a one-line reason ("not a vorogeo blob (bad magic)", "format version 2 is
-// not supported (this build reads version 1)", "checksum mismatch", ...).
-bool unpackBlob(const std::vector<uint8_t>& bytes, BlobContents& out, std::string& error);
-bool readBlobFile(const std::string& path, BlobContents& out, std::string& error);
+// not supported (this build reads version 1)", "checksum mismatch", ...). With `decode`
+// false, a coded blob's arrays stay as stored (and unchecked beyond the verifier): enough
+// for its sizes, counts and bake parameters, which `vorogeo info` prints, without the
+// runtime's open (igea x16: 75 s and 9.6 GB).
+bool unpackBlob(const std::vector<uint8_t>& bytes, BlobContents& out, std::string& error, bool decode = true);
+bool readBlobFile(const std::string& path, BlobContents& out, std::string& error, bool decode = true);
 
 }  // namespace vorogeo::tools

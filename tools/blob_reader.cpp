@@ -36,7 +36,7 @@ struct Decoding {
 
 // Decodes the hub-label tables in place (schema/vorogeo_label_coding.h), when there are
 // labels, after checking the table ranges the decoder reads (the first-layer slots and the
-// nodes' vertices are checked by decodeDistances before).
+// nodes' vertices are checked by decodeLayers before).
 bool decodeLabels(const Decoding& d, BlobContents& blob, std::string& error) {
     const fb::Graph* g = d.g;
     const auto* tree = g->hub_tree();
@@ -119,7 +119,7 @@ bool decodeTopology(const Decoding& d, std::string& error) {
 
 // Sets the patch edges' lengths (stored as 0 in a coded blob) from the positions of their
 // ends (schema/vorogeo_topology_coding.h), after checking the ranges it reads; the patches'
-// node slots are checked by decodeDistances before.
+// node slots are checked by decodeLayers before.
 bool decodePatchEdgeLengths(const Decoding& d, std::string& error) {
     const fb::Graph* g = d.g;
     const auto* edges = g->second_edges();

@@ -87,11 +87,11 @@ void codeDistances(std::vector<uint8_t>& payload, uint64_t flatbufferSize, bool 
     vg_code_planes(second, vg_coding_entries(g->second_distances()->size()), scratch.data(), 0);
     vg_code_planes(first, vg_coding_entries(g->first_distances()->size()), scratch.data(), 0);
     codeLabels(payload, flatbufferSize, g, codeInner);
-    auto indicesIn = [&](const flatbuffers::Vector<uint32_t>* v) {
-        return reinterpret_cast<uint32_t*>(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(v->data()) - flatbuffer.data()));
+    auto indicesAt = [&](const uint32_t* p) {
+        return reinterpret_cast<uint32_t*>(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(p) - flatbuffer.data()));
     };
-    vg_code_topology(indicesIn(g->face_vertices()), indicesIn(g->face_twin()), g->face_twin()->size(),
-                     indicesIn(g->vertex_halfedge()), g->vertex_halfedge()->size(), 0);
+    vg_code_topology(indicesAt(g->face_vertices()->data()), indicesAt(g->face_twin()->data()), g->face_twin()->size(),
+                     indicesAt(g->vertex_halfedge()->data()), g->vertex_halfedge()->size(), 0);
     // Patch edge lengths are not stored: readers compute them (vorogeo_topology_coding.h).
     static_assert(sizeof(fb::PatchEdge) == VG_PATCH_EDGE_BYTES, "PatchEdge layout");
     if (g->second_edges() && g->second_edges()->size() > 0) {
@@ -101,10 +101,7 @@ void codeDistances(std::vector<uint8_t>& payload, uint64_t flatbufferSize, bool 
     }
     // Last: every coding above predicts from the plain positions and reads the plain
     // indices.
-    forEachCodedSequence(g, [&](const uint32_t* data, uint64_t size) {
-        vg_code_sequence(reinterpret_cast<uint32_t*>(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(data) - flatbuffer.data())),
-                         size, 0);
-    });
+    forEachCodedSequence(g, [&](const uint32_t* data, uint64_t size) { vg_code_sequence(indicesAt(data), size, 0); });
     vg_code_positions(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(positions) - flatbuffer.data()),
                       g->positions()->size(), 0);
 }

@@ -230,15 +230,9 @@ bool decodeBlob(const std::vector<uint8_t>& bytes, BlobContents& blob, std::stri
         }
     }
     std::vector<uint8_t>& flatbuffer = blob.flatbuffer;
-    const fb::Graph* coded = fb::GetGraph(flatbuffer.data());
-    if (!coded->positions() || !coded->slots() || !coded->node_vertex() || !coded->second_patches() ||
-        !coded->first_patches() || !coded->second_distances() || !coded->first_distances()) {
-        error = "coded distances without the arrays they are decoded from";
-        return false;
-    }
     // The index sequences first, as the runtime decodes them: in place, then the structure
     // verified again (what the runtime validated is the structure after them).
-    forEachCodedSequence(coded, [&](const uint32_t* data, uint64_t size) {
+    forEachCodedSequence(fb::GetGraph(flatbuffer.data()), [&](const uint32_t* data, uint64_t size) {
         vg_code_sequence(reinterpret_cast<uint32_t*>(flatbuffer.data() + (reinterpret_cast<const uint8_t*>(data) - flatbuffer.data())),
                          size, 1);
     });

@@ -180,10 +180,10 @@ bool exitListsValid(const vorogeo::fb::Graph* g, vg_graph& out) {
 
 // A coded blob's distance, topology, sequence and position arrays and patch edge lengths
 // are decoded where they lie: the index sequences first (the structure then verified
-// again), the rest after every other array is checked. The flatbuffers verifier lets two vectors share bytes, so a crafted
-// blob could make decoding rewrite indices that were already found in range: each decoded
-// array must share no byte with any array the runtime reads. Everything a query reads is
-// listed here.
+// again), the rest after every other array is checked. The flatbuffers verifier lets two
+// vectors share bytes, so a crafted blob could make decoding rewrite indices that were
+// already found in range: each decoded array must share no byte with any array the
+// runtime reads. Everything a query reads is listed here.
 bool decodedArraysApart(const vorogeo::fb::Graph* g) {
     struct Range {
         const uint8_t* begin;
@@ -193,14 +193,16 @@ bool decodedArraysApart(const vorogeo::fb::Graph* g) {
     Range all[kCapacity];
     uint32_t n = 0;
     bool full = false;  // more arrays listed than room: refuse (every coded blob, so a test sees it)
-    auto add = [&](const auto* v) {
-        if (v == nullptr || v->size() == 0) return;
+    auto addBytes = [&](const void* data, uint64_t bytes) {
         if (n == kCapacity) {
             full = true;
             return;
         }
-        const uint8_t* b = reinterpret_cast<const uint8_t*>(v->Data());
-        all[n++] = Range{b, b + uint64_t(v->size()) * sizeof(*v->data())};
+        const uint8_t* b = static_cast<const uint8_t*>(data);
+        all[n++] = Range{b, b + bytes};
+    };
+    auto add = [&](const auto* v) {
+        if (v != nullptr && v->size() != 0) addBytes(v->Data(), uint64_t(v->size()) * sizeof(*v->data()));
     };
     // The decoded ones first.
     add(g->positions());
@@ -210,14 +212,7 @@ bool decodedArraysApart(const vorogeo::fb::Graph* g) {
     add(g->face_twin());
     add(g->vertex_halfedge());
     add(g->second_edges());  // its lengths
-    vorogeo::forEachCodedSequence(g, [&](const uint32_t* data, uint64_t size) {
-        if (n == kCapacity) {
-            full = true;
-            return;
-        }
-        const uint8_t* b = reinterpret_cast<const uint8_t*>(data);
-        all[n++] = Range{b, b + size * sizeof(uint32_t)};
-    });
+    vorogeo::forEachCodedSequence(g, [&](const uint32_t* data, uint64_t size) { addBytes(data, size * sizeof(uint32_t)); });
     const uint32_t decoded = n;
     add(g->vertex_patch());
     add(g->vertex_slot());

@@ -60,7 +60,7 @@ private:
     void propagate(const ExactGeodesic& geo, const std::vector<uint32_t>& sources, std::vector<double>& distances,
                    ExactStats* stats, double maxDistance);
     uint32_t allocBlock();
-    void append(int32_t h, const Window& w);
+    void append(int32_t h, double b0, double b1, double sx, double sy, double sigma);
     void pushList(int32_t h);
     void improve(uint32_t v, double d);
     void emitFromVertex(uint32_t v, bool insideArea);

@@ -64,7 +64,7 @@ uint32_t WavefrontWorkspace::allocBlock() {
 
 // The window is written field by field from registers: built whole on the stack and
 // copied, its 16-byte loads waited on the 8-byte stores that had just built it (a failed
-// store-to-load forward; igea's patch runs 1.06-1.13x, BENCHMARKS.md).
+// store-to-load forward; igea's patch runs 1.02-1.11x, BENCHMARKS.md).
 inline void WavefrontWorkspace::append(int32_t h, double b0, double b1, double sx, double sy, double sigma) {
     ++alive_;
     ++stats_.windowsCreated;

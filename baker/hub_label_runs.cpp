@@ -60,6 +60,58 @@ __attribute__((target("avx2"))) uint32_t lowerHitsAvx2(const double* source, dou
 }
 #endif
 
+// The float screen (BlockRuns::near_): the columns where some lane of float(source) +
+// float(quantum * scale), added in float, is below the node's upper bound, into
+// hitColumn. Every column lowerHits finds is among them (BlockRuns::run: why), with
+// the odd tie more, which the exact test in BlockRuns::lower then drops.
+uint32_t screenHits(const float* source, double scale, const uint16_t* row, uint32_t S, uint32_t slot, uint32_t noPath,
+                    const uint32_t* to, const float* near, uint32_t* hitColumn) {
+    uint32_t hits = 0;
+    for (uint32_t j = 0; j < S; ++j) {
+        if (row[j] == noPath || j == slot || to[j] == kNoNode) continue;
+        const float w = float(double(row[j]) * scale);
+        const float* n = near + uint64_t(to[j]) * kLanes;
+        uint32_t mask = 0;
+        for (uint32_t i = 0; i < kLanes; ++i) mask |= uint32_t(source[i] + w < n[i]) << i;
+        hitColumn[hits] = j;
+        hits += mask != 0;
+    }
+    return hits;
+}
+
+#if VG_LABEL_RUNS_AVX2
+// The same, eight lanes per instruction: a node's 16 bounds are one cache line.
+__attribute__((target("avx2"))) uint32_t screenHitsAvx2(const float* source, double scale, const uint16_t* row,
+                                                        uint32_t S, uint32_t slot, uint32_t noPath, const uint32_t* to,
+                                                        const float* near, uint32_t* hitColumn) {
+    const __m256 s0 = _mm256_loadu_ps(source), s1 = _mm256_loadu_ps(source + 8);
+    uint32_t hits = 0;
+    for (uint32_t j = 0; j < S; ++j) {
+        if (row[j] == noPath || j == slot || to[j] == kNoNode) continue;
+        const __m256 w = _mm256_set1_ps(float(double(row[j]) * scale));
+        const float* n = near + uint64_t(to[j]) * kLanes;
+        const __m256 below0 = _mm256_cmp_ps(_mm256_add_ps(s0, w), _mm256_load_ps(n), _CMP_LT_OQ);
+        const __m256 below1 = _mm256_cmp_ps(_mm256_add_ps(s1, w), _mm256_load_ps(n + 8), _CMP_LT_OQ);
+        hitColumn[hits] = j;
+        hits += _mm256_movemask_ps(_mm256_or_ps(below0, below1)) != 0;
+    }
+    return hits;
+}
+#endif
+
+// A float at least d * (1 + 2^-21) (d >= 0): round to nearest moves d * (1 + 2^-20) by at
+// most 2^-24 of itself.
+float upperBound(double d) { return float(d * (1.0 + 0x1p-20)); }
+
+// Whether every finite distance of a run over `o` is 0 or a normal float, so that the
+// screen's roundings are relative: each step per quantum 0 or in [1e-30, 1e20] (a
+// shortest path has fewer than 2^32 edges of at most 65535 quanta: below 3e34).
+bool screenable(const LabelOverlay& o) {
+    for (double s : o.scale)
+        if (!(s == 0 || (s >= 1e-30 && s <= 1e20))) return false;
+    return true;
+}
+
 }  // namespace
 
 void BlockRuns::lower(uint32_t node, const double* lanes) {
@@ -69,6 +121,7 @@ void BlockRuns::lower(uint32_t node, const double* lanes) {
     for (uint32_t i = 0; i < kLanes; ++i) {
         if (!(lanes[i] < d[i])) continue;
         d[i] = lanes[i];
+        near_[uint64_t(node) * kLanes + i] = upperBound(lanes[i]);
         lowered |= 1u << i;
         key = std::min(key, lanes[i]);
     }
@@ -88,6 +141,9 @@ void BlockRuns::run(const LabelOverlay& o, const uint32_t* sources, uint32_t cou
     const size_t nodes = o.memberBegin.size() - 1;
     if (pending_.size() != nodes) {
         dist_.assign(nodes * kLanes, kInf);
+        // A node's 16 bounds on one cache line: 64-byte aligned.
+        nearStorage_.assign(nodes * kLanes + kLanes, std::numeric_limits<float>::infinity());
+        near_ = nearStorage_.data() + (16 - (reinterpret_cast<uintptr_t>(nearStorage_.data()) / 4) % 16) % 16;
         key_.assign(nodes, kInf);
         queue_.reset(nodes);
         pending_.assign(nodes, 0);
@@ -96,6 +152,7 @@ void BlockRuns::run(const LabelOverlay& o, const uint32_t* sources, uint32_t cou
     }
     for (uint32_t n : touched_) {
         std::fill(dist_.begin() + int64_t(n) * kLanes, dist_.begin() + int64_t(n + 1) * kLanes, kInf);
+        std::fill(near_ + uint64_t(n) * kLanes, near_ + uint64_t(n + 1) * kLanes, std::numeric_limits<float>::infinity());
         pending_[n] = 0;
         reached_[n] = 0;
     }
@@ -118,14 +175,24 @@ void BlockRuns::run(const LabelOverlay& o, const uint32_t* sources, uint32_t cou
         reach(sources[i]);
         lower(sources[i], lanes);
     }
+    // Each column is screened against the nodes' float upper bounds (near_, half the bytes
+    // of their doubles): if source + w < n in double (w = quantum * scale), then in float
+    // fl(fl(source) + fl(w)) <= (source + w)(1 + 2^-24)^2 < n (1 + 2^-22) < upperBound(n),
+    // every rounding relative where screenable holds. So the screen keeps every column the
+    // double test would, and lower() decides on doubles: the same distances, bit for bit.
+    const bool screen = screenable(o);
     double source[kLanes], candidate[kLanes];
+    float sourceFloat[kLanes];
     const auto before = [this](uint32_t a, uint32_t b) { return this->before(a, b); };
     while (!queue_.empty()) {
         const uint32_t u = queue_.pop(before);
         const uint32_t relax = pending_[u];
         pending_[u] = 0;
         const double* du = distances(u);
-        for (uint32_t i = 0; i < kLanes; ++i) source[i] = (relax >> i) & 1u ? du[i] : kInf;
+        for (uint32_t i = 0; i < kLanes; ++i) {
+            source[i] = (relax >> i) & 1u ? du[i] : kInf;
+            sourceFloat[i] = float(source[i]);
+        }
         for (uint32_t m = o.memberBegin[u]; m < o.memberBegin[u + 1]; ++m) {
             const uint32_t p = o.members[m].first, slot = o.members[m].second;
             if (o.patchLeaf[p] < leafBegin || o.patchLeaf[p] >= leafEnd) continue;  // outside the subtree
@@ -134,12 +201,16 @@ void BlockRuns::run(const LabelOverlay& o, const uint32_t* sources, uint32_t cou
             const uint32_t* to = o.slotNode.data() + o.slotBegin[p];
             const double scale = o.scale[p];
             if (hitColumn_.size() < S) hitColumn_.resize(S);
+            uint32_t* hitColumn = hitColumn_.data();
+            uint32_t hits;
 #if VG_LABEL_RUNS_AVX2
-            const uint32_t hits = useAvx2 ? lowerHitsAvx2(source, scale, row, S, slot, o.noPath, to, dist_.data(), hitColumn_.data())
-                                          : lowerHits(source, scale, row, S, slot, o.noPath, to, dist_.data(), hitColumn_.data());
-#else
-            const uint32_t hits = lowerHits(source, scale, row, S, slot, o.noPath, to, dist_.data(), hitColumn_.data());
+            if (useAvx2)
+                hits = screen ? screenHitsAvx2(sourceFloat, scale, row, S, slot, o.noPath, to, near_, hitColumn)
+                              : lowerHitsAvx2(source, scale, row, S, slot, o.noPath, to, dist_.data(), hitColumn);
+            else
 #endif
+                hits = screen ? screenHits(sourceFloat, scale, row, S, slot, o.noPath, to, near_, hitColumn)
+                              : lowerHits(source, scale, row, S, slot, o.noPath, to, dist_.data(), hitColumn);
             // Each column is a different node, so lowering one never changes another's test.
             for (uint32_t h = 0; h < hits; ++h) {
                 const uint32_t j = hitColumn_[h];

@@ -53,6 +53,11 @@ public:
 private:
     void lower(uint32_t node, const double* lanes);
     std::vector<double> dist_;       // overlay nodes x kLanes
+    // Per node and lane a float at least its distance (upperBound in the .cpp): a row's
+    // columns are screened against these, a cache line per node instead of dist_'s two,
+    // and only the columns that pass read dist_.
+    std::vector<float> nearStorage_;
+    float* near_ = nullptr;          // nearStorage_ from its first 64-byte boundary
     std::vector<uint16_t> pending_;  // per node: lanes lowered since it last relaxed
     std::vector<uint8_t> reached_;   // per node: some lane finite (then in touched_)
     std::vector<uint32_t> touched_;  // nodes with a finite lane, reset at the next run

@@ -294,9 +294,14 @@ double twoHop(const HubLabels& l, const std::vector<uint32_t>& hubEnd, const std
 
 }  // namespace
 
-TEST_CASE("hub labels: block runs give a Dijkstra per source's distances, AVX2 and portable", "[hub]") {
-    // Random matrices over shared nodes: columns without a node, "no path" entries, patches
-    // outside the searched leaf range, fewer sources than lanes, and a reused scratch.
+namespace {
+
+// Block runs on random matrices over shared nodes (columns without a node, "no path"
+// entries, patches outside the searched leaf range, fewer sources than lanes, a reused
+// scratch) against a Dijkstra per source: entries 1..maxQuantum, patch p's step per
+// quantum scaleOf(p, rng).
+template <class ScaleOf>
+void checkBlockRunsAgainstDijkstra(uint32_t maxQuantum, const ScaleOf& scaleOf) {
     std::mt19937 rng(3);
     LabelOverlay o;
     o.noPath = 4095;
@@ -316,10 +321,10 @@ TEST_CASE("hub labels: block runs give a Dijkstra per source's distances, AVX2 a
         }
         for (uint32_t i = 0; i < S; ++i)
             for (uint32_t j = 0; j < S; ++j)
-                o.quanta.push_back(uint16_t(i == j ? 0 : rng() % 10 == 0 ? o.noPath : 1 + rng() % 4000));
+                o.quanta.push_back(uint16_t(i == j ? 0 : rng() % 10 == 0 ? o.noPath : 1 + rng() % maxQuantum));
         o.quantaBegin.push_back(o.quanta.size());
         o.slotBegin.push_back(uint32_t(o.slotNode.size()));
-        o.scale.push_back(0.001 * (1 + rng() % 7));
+        o.scale.push_back(scaleOf(p, rng));
         o.patchLeaf.push_back(rng() % 4);
     }
     o.memberBegin.push_back(0);
@@ -370,6 +375,31 @@ TEST_CASE("hub labels: block runs give a Dijkstra per source's distances, AVX2 a
         CHECK(differ == 0);
         CHECK(reached > 11 * nodes / 4);
         CHECK(unreachedLanes == nodes * (BlockRuns::kLanes - 11));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("hub labels: block runs give a Dijkstra per source's distances, AVX2 and portable", "[hub]") {
+    SECTION("steps of a graph's size") {
+        checkBlockRunsAgainstDijkstra(4000, [](uint32_t, std::mt19937& rng) { return 0.001 * (1 + rng() % 7); });
+    }
+    SECTION("many equal paths: the float screen's ties decided in double") {
+        // Small integer steps of one scale: most nodes are reached by several shortest
+        // paths of equal length, and many sums tie with a node's distance.
+        checkBlockRunsAgainstDijkstra(3, [](uint32_t, std::mt19937&) { return 0.25; });
+    }
+    SECTION("paths shorter than others by less than a float's precision") {
+        // Steps apart by 2^-30 of themselves: a column's sum is often below a node's
+        // distance by less than a float can tell, and must still lower it.
+        checkBlockRunsAgainstDijkstra(3, [](uint32_t p, std::mt19937&) { return 0.25 * (1 + (p % 5) * 0x1p-30); });
+    }
+    SECTION("patches of zero steps beside others") {
+        checkBlockRunsAgainstDijkstra(50, [](uint32_t p, std::mt19937&) { return p % 3 == 0 ? 0.0 : 1e-3; });
+    }
+    SECTION("steps too large or too small for the float screen: the double test alone") {
+        checkBlockRunsAgainstDijkstra(4000, [](uint32_t, std::mt19937& rng) { return 1e24 * (1 + rng() % 7); });
+        checkBlockRunsAgainstDijkstra(4000, [](uint32_t, std::mt19937& rng) { return 1e-33 * (1 + rng() % 7); });
     }
 }
 

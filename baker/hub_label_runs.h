@@ -34,7 +34,20 @@ struct LabelOverlay {
     std::vector<uint32_t> memberBegin;    // nodes + 1 offsets into members
     std::vector<std::pair<uint32_t, uint32_t>> members;  // per node: its rows (patch, slot)
     std::vector<uint32_t> patchLeaf;      // per patch: its leaf tree node (tree in preorder), or 0
+    // Per patch, 1 where closePatchMatrix closed its matrix (empty: none): a run then never
+    // reads a node's row there for the lanes that reached the node through that very row's
+    // slot (BlockRuns::run: why that gives the same distances).
+    std::vector<uint8_t> closed;
 };
+
+// Closes patch p's matrix under the triangle inequality, in whole quanta and through slots
+// that have a node (entry i, j: the shortest chain of entries inside the patch), and marks
+// it in o.closed (sized to the patches by the caller, so that patches may be closed in
+// parallel) if no entry between two slots with nodes is "no path"; else leaves it as it
+// is. The overlay's shortest paths are unchanged: every new entry is the length of a
+// chain the graph has (in the double sums of a run, exactly so where run's check holds).
+// avx2: use AVX2 where the processor has it (the same entries either way).
+void closePatchMatrix(LabelOverlay& o, uint32_t p, bool avx2 = true);
 
 // Scratch of one thread's block runs.
 class BlockRuns {
@@ -49,10 +62,23 @@ public:
              bool avx2 = true);
     // Node n's lanes after run (+inf: not reached).
     const double* distances(uint32_t n) const { return dist_.data() + uint64_t(n) * kLanes; }
+    // What the last run did: the matrix rows it read, and whether it skipped rows of closed
+    // patches (false: none closed, or its sums were not all exact and it searched again).
+    uint64_t rowsRead() const { return rowsRead_; }
+    bool skippedRows() const { return skippedRows_; }
 
 private:
-    void lower(uint32_t node, const double* lanes);
+    // Lowers node's lanes to `lanes` where those are smaller, their way in through global
+    // slot `via` (kNoSlot: a source).
+    void lower(uint32_t node, const double* lanes, uint32_t via);
+    // The search itself; skipClosed: skip the rows of closed patches as run describes.
+    void search(const LabelOverlay& o, const uint32_t* sources, uint32_t count, uint32_t leafBegin, uint32_t leafEnd,
+                bool useAvx2, bool skipClosed);
     std::vector<double> dist_;       // overlay nodes x kLanes
+    std::vector<uint32_t> via_;      // overlay nodes x kLanes: the global slot of each lane's last lowering
+    double largest_ = 0;             // the largest distance assigned in this search
+    uint64_t rowsRead_ = 0;
+    bool skippedRows_ = false;
     // Per node and lane a float at least its distance (upperBound in the .cpp): a row's
     // columns are screened against these, a cache line per node instead of dist_'s two,
     // and only the columns that pass read dist_.

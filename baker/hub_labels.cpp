@@ -640,6 +640,9 @@ HubLabels computeHubLabels(const std::vector<uint8_t>& flatbuffer, const HubProg
         // (the unpacked matrices move into it: only the per-hub references read them too)
         buildLabelOverlay(v, std::move(quantaBegin), std::move(quanta), std::move(patchScale), slotNode, out.firstLeaf,
                           overlay, overlayOf);
+        // Closed matrices let the runs skip half of their rows (hub_label_runs.h).
+        overlay.closed.assign(v.firstCount, 0);
+        parallelFor(v.firstCount, [&](size_t p) { closePatchMatrix(overlay, uint32_t(p)); });
         std::vector<std::pair<uint32_t, uint32_t>> blocks;  // (tree node, block)
         for (uint32_t t = 0; t < T; ++t)
             for (uint32_t b = 0; b * kHubBlock < out.tree[t].hubCount; ++b) blocks.push_back({t, b});

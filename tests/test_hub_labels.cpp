@@ -296,12 +296,17 @@ double twoHop(const HubLabels& l, const std::vector<uint32_t>& hubEnd, const std
 
 namespace {
 
-// Block runs on random matrices over shared nodes (columns without a node, "no path"
-// entries, patches outside the searched leaf range, fewer sources than lanes, a reused
-// scratch) against a Dijkstra per source: entries 1..maxQuantum, patch p's step per
-// quantum scaleOf(p, rng).
+// Block runs on random matrices over shared nodes (columns without a node, a node at two
+// slots of one patch, "no path" entries unless closed, patches outside the searched leaf
+// range, fewer sources than lanes, a reused scratch) against a Dijkstra per source:
+// entries 1..maxQuantum, patch p's step per quantum scaleOf(p, rng). Closed: the runs
+// search the closed matrices (closePatchMatrix, AVX2 and portable alike); with exact sums
+// they skip rows, reading fewer than on the open ones, for the same distances; with steps
+// whose sums round they skip none and give the same distances up to that rounding.
+enum class Closed { no, exactSums, roundedSums };
 template <class ScaleOf>
-void checkBlockRunsAgainstDijkstra(uint32_t maxQuantum, const ScaleOf& scaleOf) {
+void checkBlockRunsAgainstDijkstra(uint32_t maxQuantum, const ScaleOf& scaleOf, Closed closed = Closed::no) {
+    const bool close = closed != Closed::no;
     std::mt19937 rng(3);
     LabelOverlay o;
     o.noPath = 4095;
@@ -315,13 +320,14 @@ void checkBlockRunsAgainstDijkstra(uint32_t maxQuantum, const ScaleOf& scaleOf) 
         for (uint32_t n = 0; n < nodes; ++n) pick[n] = n;
         std::shuffle(pick.begin(), pick.end(), rng);
         for (uint32_t j = 0; j < S; ++j) {
-            const bool none = rng() % 20 == 0;
-            o.slotNode.push_back(none ? UINT32_MAX : pick[j]);
-            if (!none) rowsOf[pick[j]].push_back({p, j});
+            const bool none = rng() % 20 == 0, again = j == S - 1 && p % 4 == 1;
+            const uint32_t n = again ? pick[0] : pick[j];
+            o.slotNode.push_back(none ? UINT32_MAX : n);
+            if (!none) rowsOf[n].push_back({p, j});
         }
         for (uint32_t i = 0; i < S; ++i)
             for (uint32_t j = 0; j < S; ++j)
-                o.quanta.push_back(uint16_t(i == j ? 0 : rng() % 10 == 0 ? o.noPath : 1 + rng() % maxQuantum));
+                o.quanta.push_back(uint16_t(i == j ? 0 : !close && rng() % 10 == 0 ? o.noPath : 1 + rng() % maxQuantum));
         o.quantaBegin.push_back(o.quanta.size());
         o.slotBegin.push_back(uint32_t(o.slotNode.size()));
         o.scale.push_back(scaleOf(p, rng));
@@ -355,18 +361,39 @@ void checkBlockRunsAgainstDijkstra(uint32_t maxQuantum, const ScaleOf& scaleOf) 
             }
         }
     };
-    BlockRuns avx2, portable;
+    LabelOverlay searched = o;
+    if (close) {
+        LabelOverlay portableClosed = o;
+        searched.closed.assign(patches, 0);
+        portableClosed.closed.assign(patches, 0);
+        for (uint32_t p = 0; p < patches; ++p) {
+            closePatchMatrix(searched, p, true);
+            closePatchMatrix(portableClosed, p, false);
+        }
+        CHECK(searched.quanta == portableClosed.quanta);
+        CHECK(searched.quanta != o.quanta);  // random entries break the triangle inequality
+        CHECK(std::count(searched.closed.begin(), searched.closed.end(), uint8_t(1)) == patches);
+    }
+    BlockRuns avx2, portable, open;
     for (const auto& leaves : {std::pair<uint32_t, uint32_t>{0, 4}, std::pair<uint32_t, uint32_t>{1, 3}}) {
         uint32_t sources[BlockRuns::kLanes];
         for (uint32_t i = 0; i < 11; ++i) sources[i] = (i * 37 + leaves.first * 5) % nodes;
-        avx2.run(o, sources, 11, leaves.first, leaves.second, true);
-        portable.run(o, sources, 11, leaves.first, leaves.second, false);
+        avx2.run(searched, sources, 11, leaves.first, leaves.second, true);
+        portable.run(searched, sources, 11, leaves.first, leaves.second, false);
+        open.run(o, sources, 11, leaves.first, leaves.second, true);
+        CHECK(!open.skippedRows());
+        CHECK(avx2.skippedRows() == (closed == Closed::exactSums));
+        CHECK(portable.skippedRows() == avx2.skippedRows());
+        if (closed == Closed::exactSums) CHECK(avx2.rowsRead() < open.rowsRead() * 9 / 10);
         size_t differ = 0, reached = 0, unreachedLanes = 0;
         for (uint32_t i = 0; i < 11; ++i) {
             const std::vector<double> reference = dijkstra(sources[i], leaves.first, leaves.second);
             for (uint32_t n = 0; n < nodes; ++n) {
-                differ += avx2.distances(n)[i] != reference[n];
-                differ += portable.distances(n)[i] != reference[n];
+                // Rounded sums: a closed entry's one product against a chain's sum of two.
+                const double slack = closed == Closed::roundedSums ? 1e-12 * reference[n] : 0.0;
+                differ += !(std::fabs(avx2.distances(n)[i] - reference[n]) <= slack) && avx2.distances(n)[i] != reference[n];
+                differ += !(std::fabs(portable.distances(n)[i] - reference[n]) <= slack) &&
+                          portable.distances(n)[i] != reference[n];
                 reached += std::isfinite(reference[n]) && reference[n] > 0;
             }
         }
@@ -393,6 +420,17 @@ TEST_CASE("hub labels: block runs give a Dijkstra per source's distances, AVX2 a
         // Steps apart by 2^-30 of themselves: a column's sum is often below a node's
         // distance by less than a float can tell, and must still lower it.
         checkBlockRunsAgainstDijkstra(3, [](uint32_t p, std::mt19937&) { return 0.25 * (1 + (p % 5) * 0x1p-30); });
+    }
+    SECTION("closed matrices, rows skipped") {
+        checkBlockRunsAgainstDijkstra(
+            4000, [](uint32_t, std::mt19937& rng) { return double(float(0.001 * (1 + rng() % 7))); }, Closed::exactSums);
+        checkBlockRunsAgainstDijkstra(3, [](uint32_t, std::mt19937&) { return 0.25; }, Closed::exactSums);
+    }
+    SECTION("closed matrices whose sums could round: no row skipped") {
+        // Steps of 53 significant bits: a run's sums are not exact, so it searches again
+        // without skipping and still gives the Dijkstra's distances.
+        checkBlockRunsAgainstDijkstra(4000, [](uint32_t, std::mt19937& rng) { return 0.001 * (1 + rng() % 7); },
+                                      Closed::roundedSums);
     }
     SECTION("patches of zero steps beside others") {
         checkBlockRunsAgainstDijkstra(50, [](uint32_t p, std::mt19937&) { return p % 3 == 0 ? 0.0 : 1e-3; });

@@ -26,42 +26,38 @@ struct Exit {
 // For inner row `inner` (one entry per slot of the first-layer patch) and the block
 // matrix `block` (kHubBlock entries per hub of the tree node's subtree, from hub `lo`):
 // per lane, the first exit among exits[begin, end) with the smallest saturated sum
-// inner + label, marked in `needed` (none where every sum is "no path").
-void markBest(const uint16_t* inner, const uint16_t* block, uint32_t lo, const Exit* exits, uint32_t begin, uint32_t end,
-              std::vector<uint8_t>& needed) {
-    uint32_t best[kHubBlock], arg[kHubBlock];
-    for (uint32_t j = 0; j < kHubBlock; ++j) best[j] = kHubUnreachable, arg[j] = kNo;
+// inner + label, into best (kNoExit where every sum is "no path").
+constexpr uint16_t kNoExit = 0xFFFF;
+
+void bestExits(const uint16_t* inner, const uint16_t* block, uint32_t lo, const Exit* exits, uint32_t begin,
+               uint32_t end, uint16_t* best) {
+    uint32_t low[kHubBlock];
+    for (uint32_t j = 0; j < kHubBlock; ++j) low[j] = kHubUnreachable, best[j] = kNoExit;
     for (uint32_t c = begin; c < end; ++c) {
         const uint16_t* row = block + uint64_t(exits[c].hub - lo) * kHubBlock;
         const uint32_t base = inner[exits[c].slot];
         for (uint32_t j = 0; j < kHubBlock; ++j) {
             const uint32_t sum = std::min<uint32_t>(base + row[j], kHubUnreachable);
-            if (sum < best[j]) best[j] = sum, arg[j] = c;
+            if (sum < low[j]) low[j] = sum, best[j] = uint16_t(c);
         }
     }
-    for (uint32_t j = 0; j < kHubBlock; ++j)
-        if (arg[j] != kNo) needed[arg[j]] = 1;
 }
 
 #if VG_EXIT_LISTS_AVX2
 // The same sixteen lanes at once (saturating 16-bit sums, a strict unsigned "less" that
-// keeps the first exit of a tie): the same marks.
-__attribute__((target("avx2"))) void markBestAvx2(const uint16_t* inner, const uint16_t* block, uint32_t lo,
-                                                  const Exit* exits, uint32_t begin, uint32_t end,
-                                                  std::vector<uint8_t>& needed) {
-    __m256i best = _mm256_set1_epi16(-1), arg = _mm256_set1_epi16(-1);  // 65535: none
+// keeps the first exit of a tie): the same exits.
+__attribute__((target("avx2"))) void bestExitsAvx2(const uint16_t* inner, const uint16_t* block, uint32_t lo,
+                                                   const Exit* exits, uint32_t begin, uint32_t end, uint16_t* best) {
+    __m256i low = _mm256_set1_epi16(-1), arg = _mm256_set1_epi16(-1);  // 65535: none
     for (uint32_t c = begin; c < end; ++c) {
         const __m256i row = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(block + uint64_t(exits[c].hub - lo) * kHubBlock));
         const __m256i sum = _mm256_adds_epu16(row, _mm256_set1_epi16(short(inner[exits[c].slot])));
-        const __m256i lower = _mm256_min_epu16(sum, best);
-        const __m256i improved = _mm256_andnot_si256(_mm256_cmpeq_epi16(lower, best), _mm256_set1_epi16(-1));
+        const __m256i lower = _mm256_min_epu16(sum, low);
+        const __m256i improved = _mm256_andnot_si256(_mm256_cmpeq_epi16(lower, low), _mm256_set1_epi16(-1));
         arg = _mm256_blendv_epi8(arg, _mm256_set1_epi16(short(c)), improved);
-        best = lower;
+        low = lower;
     }
-    alignas(32) uint16_t lanes[kHubBlock];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), arg);
-    for (uint32_t j = 0; j < kHubBlock; ++j)
-        if (lanes[j] != 0xFFFF) needed[lanes[j]] = 1;
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(best), arg);
 }
 #endif
 
@@ -113,41 +109,73 @@ void computeHubExitLists(const std::vector<uint8_t>& flatbuffer, HubLabels& labe
 #else
     (void)allowAvx2;
 #endif
+    std::vector<std::vector<uint32_t>> children(firstCount);  // per first-layer patch, increasing
+    for (uint32_t q = 0; q < secondCount; ++q) children[g->second_patches()->Get(q)->parent()].push_back(q);
     std::vector<std::vector<uint32_t>> listEnds(secondCount);  // per patch: each list's end within its part
     std::vector<std::vector<uint16_t>> lists(secondCount);
-    parallelFor(secondCount, [&](size_t q) {
-        const fb::PatchRecord& sp = *g->second_patches()->Get(uint32_t(q));
-        const uint32_t p = sp.parent(), K = g->first_patches()->Get(p)->slot_count();
-        std::vector<const uint16_t*> rows;  // the inner rows of q's active nodes
-        for (uint32_t j = 0; j < sp.node_count(); ++j) {
-            const uint32_t node = slotNode(uint64_t(sp.slot_begin()) + j);
-            if ((g->node_flags()->Get(node) & 1u) != 0) continue;  // merged away: not a row node
-            const uint32_t r = innerRowOf(p, node);
-            if (r != kNo) rows.push_back(labels.inner.data() + labels.innerMatrixBegin[p] + uint64_t(r) * K);
-        }
-        std::vector<uint32_t> path;  // root first
+    // Per first-layer patch P: each inner row's best exits per block of P's tree path once
+    // (a node lies in two or more second-layer patches, whose lists all need its exits),
+    // then each second-layer patch's lists as the union over its nodes' rows.
+    parallelFor(firstCount, [&](size_t pIndex) {
+        const uint32_t p = uint32_t(pIndex);
+        if (children[p].empty()) return;
+        const uint32_t K = g->first_patches()->Get(p)->slot_count();
+        const uint32_t R = labels.innerBegin[p + 1] - labels.innerBegin[p];
+        const uint16_t* innerMatrix = labels.inner.data() + labels.innerMatrixBegin[p];
+        const std::vector<Exit>& ex = exits[p];
+        struct PathBlock {
+            const uint16_t* block;
+            uint32_t lo, begin, end;
+        };
+        std::vector<PathBlock> pathBlocks;  // root first, a tree node's blocks in order
+        std::vector<uint32_t> path;
         for (uint32_t t = labels.firstLeaf[p]; t != kNo; t = labels.tree[t].parent) path.push_back(t);
         std::reverse(path.begin(), path.end());
-        const std::vector<Exit>& ex = exits[p];
-        std::vector<uint8_t> needed(ex.size());
         for (uint32_t t : path) {
             const uint32_t lo = labels.tree[t].hubBegin, hi = hubEnd(t);
             auto byHub = [](const Exit& e, uint32_t hub) { return e.hub < hub; };
             const uint32_t begin = uint32_t(std::lower_bound(ex.begin(), ex.end(), lo, byHub) - ex.begin());
             const uint32_t end = uint32_t(std::lower_bound(ex.begin(), ex.end(), hi, byHub) - ex.begin());
-            for (uint32_t b = 0; b < blocks[t]; ++b) {
-                const uint16_t* block = labels.columns.data() + labels.columnBegin[t] + uint64_t(b) * kHubBlock * (hi - lo);
-                std::fill(needed.begin(), needed.end(), 0);
-                for (const uint16_t* inner : rows) {
+            for (uint32_t b = 0; b < blocks[t]; ++b)
+                pathBlocks.push_back(PathBlock{
+                    labels.columns.data() + labels.columnBegin[t] + uint64_t(b) * kHubBlock * (hi - lo), lo, begin, end});
+        }
+        // best: per block and inner row, the best exit of each lane.
+        const size_t B = pathBlocks.size();
+        std::vector<uint16_t> best(B * R * kHubBlock);
+        for (size_t k = 0; k < B; ++k) {
+            const PathBlock& pb = pathBlocks[k];
+            for (uint32_t r = 0; r < R; ++r) {
+                const uint16_t* inner = innerMatrix + uint64_t(r) * K;
+                uint16_t* out = best.data() + (k * R + r) * kHubBlock;
 #if VG_EXIT_LISTS_AVX2
-                    if (avx2) {
-                        markBestAvx2(inner, block, lo, ex.data(), begin, end, needed);
-                        continue;
-                    }
-#endif
-                    markBest(inner, block, lo, ex.data(), begin, end, needed);
+                if (avx2) {
+                    bestExitsAvx2(inner, pb.block, pb.lo, ex.data(), pb.begin, pb.end, out);
+                    continue;
                 }
-                for (uint32_t c = begin; c < end; ++c)
+#endif
+                bestExits(inner, pb.block, pb.lo, ex.data(), pb.begin, pb.end, out);
+            }
+        }
+        std::vector<uint8_t> needed(ex.size());
+        std::vector<uint32_t> rows;  // the inner rows of q's active nodes
+        for (uint32_t q : children[p]) {
+            const fb::PatchRecord& sp = *g->second_patches()->Get(q);
+            rows.clear();
+            for (uint32_t j = 0; j < sp.node_count(); ++j) {
+                const uint32_t node = slotNode(uint64_t(sp.slot_begin()) + j);
+                if ((g->node_flags()->Get(node) & 1u) != 0) continue;  // merged away: not a row node
+                const uint32_t r = innerRowOf(p, node);
+                if (r != kNo) rows.push_back(r);
+            }
+            for (size_t k = 0; k < B; ++k) {
+                std::fill(needed.begin(), needed.end(), 0);
+                for (uint32_t r : rows) {
+                    const uint16_t* lanes = best.data() + (k * R + r) * kHubBlock;
+                    for (uint32_t j = 0; j < kHubBlock; ++j)
+                        if (lanes[j] != kNoExit) needed[lanes[j]] = 1;
+                }
+                for (uint32_t c = pathBlocks[k].begin; c < pathBlocks[k].end; ++c)
                     if (needed[c]) lists[q].push_back(uint16_t(c));
                 listEnds[q].push_back(uint32_t(lists[q].size()));
             }

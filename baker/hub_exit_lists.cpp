@@ -136,9 +136,10 @@ void computeHubExitLists(const std::vector<uint8_t>& flatbuffer, HubLabels& labe
             auto byHub = [](const Exit& e, uint32_t hub) { return e.hub < hub; };
             const uint32_t begin = uint32_t(std::lower_bound(ex.begin(), ex.end(), lo, byHub) - ex.begin());
             const uint32_t end = uint32_t(std::lower_bound(ex.begin(), ex.end(), hi, byHub) - ex.begin());
-            for (uint32_t b = 0; b < blocks[t]; ++b)
-                pathBlocks.push_back(PathBlock{
-                    labels.columns.data() + labels.columnBegin[t] + uint64_t(b) * kHubBlock * (hi - lo), lo, begin, end});
+            for (uint32_t b = 0; b < blocks[t]; ++b) {
+                const uint16_t* block = labels.columns.data() + labels.columnBegin[t] + uint64_t(b) * kHubBlock * (hi - lo);
+                pathBlocks.push_back(PathBlock{block, lo, begin, end});
+            }
         }
         // best: per block and inner row, the best exit of each lane.
         const size_t B = pathBlocks.size();

@@ -23,15 +23,18 @@ constexpr uint32_t kNoSlot = UINT32_MAX;
 
 // Row `row` (S quanta; column `slot` is the node itself, kNoNode columns have none) of a
 // node whose relaxing lanes are `source` (+inf in the others), against the lanes of the
-// row's nodes (dist, kLanes per node, `to`): the columns where some lane of source +
-// quantum * scale is lower, into hitColumn. Returns their number.
-uint32_t lowerHits(const double* source, double scale, const uint16_t* row, uint32_t S, uint32_t slot, uint32_t noPath,
-                   const uint32_t* to, const double* dist, uint32_t* hitColumn) {
+// row's nodes (`bound`, kLanes per node, `to`): the columns where some lane of source +
+// quantum * scale, in Real, is lower, into hitColumn. Returns their number. With doubles
+// against the distances, the exact test; with floats against their upper bounds, the
+// screen (BlockRuns::search: why it keeps every column the exact test would).
+template <class Real>
+uint32_t lowerHits(const Real* source, double scale, const uint16_t* row, uint32_t S, uint32_t slot, uint32_t noPath,
+                   const uint32_t* to, const Real* bound, uint32_t* hitColumn) {
     uint32_t hits = 0;
     for (uint32_t j = 0; j < S; ++j) {
         if (row[j] == noPath || j == slot || to[j] == kNoNode) continue;
-        const double w = double(row[j]) * scale;
-        const double* n = dist + uint64_t(to[j]) * kLanes;
+        const Real w = Real(double(row[j]) * scale);
+        const Real* n = bound + uint64_t(to[j]) * kLanes;
         uint32_t mask = 0;
         for (uint32_t i = 0; i < kLanes; ++i) mask |= uint32_t(source[i] + w < n[i]) << i;
         hitColumn[hits] = j;
@@ -41,7 +44,7 @@ uint32_t lowerHits(const double* source, double scale, const uint16_t* row, uint
 }
 
 #if VG_LABEL_RUNS_AVX2
-// The same, four lanes per instruction (the same sums and comparisons).
+// The exact test, four lanes per instruction (the same sums and comparisons).
 __attribute__((target("avx2"))) uint32_t lowerHitsAvx2(const double* source, double scale, const uint16_t* row,
                                                        uint32_t S, uint32_t slot, uint32_t noPath, const uint32_t* to,
                                                        const double* dist, uint32_t* hitColumn) {
@@ -61,29 +64,8 @@ __attribute__((target("avx2"))) uint32_t lowerHitsAvx2(const double* source, dou
     }
     return hits;
 }
-#endif
 
-// The float screen (BlockRuns::near_): the columns where some lane of float(source) +
-// float(quantum * scale), added in float, is below the node's upper bound, into
-// hitColumn. Every column lowerHits finds is among them (BlockRuns::run: why), with
-// the odd tie more, which the exact test in BlockRuns::lower then drops.
-uint32_t screenHits(const float* source, double scale, const uint16_t* row, uint32_t S, uint32_t slot, uint32_t noPath,
-                    const uint32_t* to, const float* near, uint32_t* hitColumn) {
-    uint32_t hits = 0;
-    for (uint32_t j = 0; j < S; ++j) {
-        if (row[j] == noPath || j == slot || to[j] == kNoNode) continue;
-        const float w = float(double(row[j]) * scale);
-        const float* n = near + uint64_t(to[j]) * kLanes;
-        uint32_t mask = 0;
-        for (uint32_t i = 0; i < kLanes; ++i) mask |= uint32_t(source[i] + w < n[i]) << i;
-        hitColumn[hits] = j;
-        hits += mask != 0;
-    }
-    return hits;
-}
-
-#if VG_LABEL_RUNS_AVX2
-// The same, eight lanes per instruction: a node's 16 bounds are one cache line.
+// The screen, eight float lanes per instruction: a node's 16 bounds are one cache line.
 __attribute__((target("avx2"))) uint32_t screenHitsAvx2(const float* source, double scale, const uint16_t* row,
                                                         uint32_t S, uint32_t slot, uint32_t noPath, const uint32_t* to,
                                                         const float* near, uint32_t* hitColumn) {
@@ -101,6 +83,16 @@ __attribute__((target("avx2"))) uint32_t screenHitsAvx2(const float* source, dou
     return hits;
 }
 #endif
+
+// Whether to take the AVX2 kernels: allowed and the processor has it.
+bool avx2Usable(bool allowed) {
+#if VG_LABEL_RUNS_AVX2
+    return allowed && __builtin_cpu_supports("avx2");
+#else
+    (void)allowed;
+    return false;
+#endif
+}
 
 // A float at least d * (1 + 2^-21) (d >= 0): round to nearest moves d * (1 + 2^-20) by at
 // most 2^-24 of itself.
@@ -163,20 +155,19 @@ void closePatchMatrix(LabelOverlay& o, uint32_t p, bool avx2) {
     const uint32_t S = o.slotBegin[p + 1] - o.slotBegin[p];
     uint16_t* m = o.quanta.data() + o.quantaBegin[p];
     const uint32_t* node = o.slotNode.data() + o.slotBegin[p];
-    if (o.closed.size() != o.scale.size()) throw std::logic_error("closePatchMatrix: o.closed is not sized to the patches");
+    if (o.closed.size() != o.scale.size())
+        throw std::logic_error("closePatchMatrix: o.closed is not sized to the patches");
     for (uint32_t i = 0; i < S; ++i)
-        for (uint32_t j = 0; j < S; ++j)
-            if (node[i] != kNoNode && node[j] != kNoNode && (m[uint64_t(i) * S + j] >= o.noPath || m[uint64_t(i) * S + j] > 4094))
+        for (uint32_t j = 0; j < S; ++j) {
+            const uint16_t entry = m[uint64_t(i) * S + j];
+            if (node[i] != kNoNode && node[j] != kNoNode && (entry >= o.noPath || entry > 4094))
                 return;  // "no path", or entries past 12 bits that could sum past 16: left open
-#if VG_LABEL_RUNS_AVX2
-    const bool useAvx2 = avx2 && __builtin_cpu_supports("avx2");
-#else
-    const bool useAvx2 = false;
-    (void)avx2;
-#endif
-    // Rows of slots without a node are closed too but never read; the chains pass only
-    // through slots with one, as the graph's paths do. The rows keep "no path" nowhere
-    // between slots with nodes, so every sum below is of two entries under 4095.
+        }
+    const bool useAvx2 = avx2Usable(avx2);
+    // Only rows of slots with a node are read by the runs, and only those are closed; the
+    // chains pass only through such slots, as the graph's paths do. Each sum is of an entry
+    // between two of them (under 4095) and one of at most 4095 (a column without a node may
+    // say "no path"; the runs never read those columns): it fits 16 bits.
     for (uint32_t k = 0; k < S; ++k) {
         if (node[k] == kNoNode) continue;
         const uint16_t* through = m + uint64_t(k) * S;
@@ -222,12 +213,7 @@ void BlockRuns::push(uint32_t node, double key) {
 
 void BlockRuns::run(const LabelOverlay& o, const uint32_t* sources, uint32_t count, uint32_t leafBegin,
                     uint32_t leafEnd, bool avx2) {
-#if VG_LABEL_RUNS_AVX2
-    const bool useAvx2 = avx2 && __builtin_cpu_supports("avx2");
-#else
-    const bool useAvx2 = false;
-    (void)avx2;
-#endif
+    const bool useAvx2 = avx2Usable(avx2);
     const bool anyClosed = std::find(o.closed.begin(), o.closed.end(), uint8_t(1)) != o.closed.end();
     search(o, sources, count, leafBegin, leafEnd, useAvx2, anyClosed);
     skippedRows_ = anyClosed;
@@ -261,7 +247,8 @@ void BlockRuns::search(const LabelOverlay& o, const uint32_t* sources, uint32_t 
     }
     for (uint32_t n : touched_) {
         std::fill(dist_.begin() + int64_t(n) * kLanes, dist_.begin() + int64_t(n + 1) * kLanes, kInf);
-        std::fill(near_ + uint64_t(n) * kLanes, near_ + uint64_t(n + 1) * kLanes, std::numeric_limits<float>::infinity());
+        std::fill(near_ + uint64_t(n) * kLanes, near_ + uint64_t(n + 1) * kLanes,
+                  std::numeric_limits<float>::infinity());
         pending_[n] = 0;
         reached_[n] = 0;
     }
@@ -333,7 +320,7 @@ void BlockRuns::search(const LabelOverlay& o, const uint32_t* sources, uint32_t 
                               : lowerHitsAvx2(source, scale, row, S, slot, o.noPath, to, dist_.data(), hitColumn);
             else
 #endif
-                hits = screen ? screenHits(sourceFloat, scale, row, S, slot, o.noPath, to, near_, hitColumn)
+                hits = screen ? lowerHits(sourceFloat, scale, row, S, slot, o.noPath, to, near_, hitColumn)
                               : lowerHits(source, scale, row, S, slot, o.noPath, to, dist_.data(), hitColumn);
             // Each column is a different node, so lowering one never changes another's test.
             const uint32_t viaBase = o.slotBegin[p];

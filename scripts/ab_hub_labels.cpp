@@ -116,7 +116,8 @@ int main(int argc, char** argv) {
         seconds[0].push_back(took[0]);
         seconds[1].push_back(took[1]);
         ratio.push_back(took[0] / took[1]);
-        std::printf("| %d | %s | %.3f | %.3f | %.3f |\n", turn + 1, turn % 2 ? "B" : "A", took[0], took[1], ratio.back());
+        std::printf("| %d | %s | %.3f | %.3f | %.3f |\n", turn + 1, turn % 2 ? "B" : "A", took[0], took[1],
+                    ratio.back());
         std::fflush(stdout);
     }
     std::printf("medians over %d turns, %d threads: A %.3f s, B %.3f s, A/B %.3f; tables %s\n", turns, threads,

@@ -28,5 +28,6 @@ if "$tmp/ab_hub_labels" "$tmp/a.so" "$tmp/b.so" "$tmp/packed.vgeo" > "$tmp/bad.t
   echo "FAIL: a compressed blob taken"
   exit 1
 fi
-grep -q "packed.vgeo is compressed or coded" "$tmp/bad.txt" || { echo "FAIL: the error does not name the problem:"; cat "$tmp/bad.txt"; exit 1; }
+grep -q "packed.vgeo is compressed or coded" "$tmp/bad.txt" ||
+  { echo "FAIL: the error does not name the problem:"; cat "$tmp/bad.txt"; exit 1; }
 echo "ab_hub_labels: two copies alike; a compressed blob refused"

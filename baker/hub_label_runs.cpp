@@ -94,9 +94,15 @@ bool avx2Usable(bool allowed) {
 #endif
 }
 
+// d as a float, +inf beyond the floats' range (where a conversion is undefined). The
+// distances of a run that screens all lie within it (screenable).
+float toFloat(double d) {
+    return d <= double(std::numeric_limits<float>::max()) ? float(d) : std::numeric_limits<float>::infinity();
+}
+
 // A float at least d * (1 + 2^-21) (d >= 0): round to nearest moves d * (1 + 2^-20) by at
 // most 2^-24 of itself.
-float upperBound(double d) { return float(d * (1.0 + 0x1p-20)); }
+float upperBound(double d) { return toFloat(d * (1.0 + 0x1p-20)); }
 
 // Whether every finite distance of a run over `o` is 0 or a normal float, so that the
 // screen's roundings are relative: each step per quantum 0 or in [1e-30, 1e20] (a
@@ -302,7 +308,7 @@ void BlockRuns::search(const LabelOverlay& o, const uint32_t* sources, uint32_t 
             if (lanesHere != loaded) {
                 for (uint32_t i = 0; i < kLanes; ++i) {
                     source[i] = (lanesHere >> i) & 1u ? du[i] : kInf;
-                    sourceFloat[i] = float(source[i]);
+                    sourceFloat[i] = toFloat(source[i]);
                 }
                 loaded = lanesHere;
             }

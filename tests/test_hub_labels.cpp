@@ -439,6 +439,8 @@ TEST_CASE("hub labels: block runs give a Dijkstra per source's distances, AVX2 a
     }
     SECTION("steps too large or too small for the float screen: the double test alone") {
         checkBlockRunsAgainstDijkstra(4000, [](uint32_t, std::mt19937& rng) { return 1e24 * (1 + rng() % 7); });
+        // Distances past the floats' range (3.4e38): the bounds kept are +inf.
+        checkBlockRunsAgainstDijkstra(4000, [](uint32_t, std::mt19937& rng) { return 1e36 * (1 + rng() % 7); });
         checkBlockRunsAgainstDijkstra(4000, [](uint32_t, std::mt19937& rng) { return 1e-33 * (1 + rng() % 7); });
     }
 }

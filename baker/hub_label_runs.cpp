@@ -133,8 +133,8 @@ double commonUnit(const LabelOverlay& o) {
 }
 
 // One step of Floyd-Warshall on row `row` of an S-column matrix through row `through`
-// (`via` = row[k]): row[j] = min(row[j], via + through[j]). Entries are at most 4094, so
-// sums fit 16 bits.
+// (`via` = row[k]): row[j] = min(row[j], via + through[j]). Both terms are at most 4095
+// (closePatchMatrix: why), so sums fit 16 bits.
 void closeRow(uint16_t* row, const uint16_t* through, uint16_t via, uint32_t S) {
     for (uint32_t j = 0; j < S; ++j) {
         const uint16_t sum = uint16_t(via + through[j]);
@@ -328,7 +328,8 @@ void BlockRuns::search(const LabelOverlay& o, const uint32_t* sources, uint32_t 
 #endif
                 hits = screen ? lowerHits(sourceFloat, scale, row, S, slot, o.noPath, to, near_, hitColumn)
                               : lowerHits(source, scale, row, S, slot, o.noPath, to, dist_.data(), hitColumn);
-            // Each column is a different node, so lowering one never changes another's test.
+            // A node at two columns of one row (two slots of a patch) passes at most twice;
+            // lower() tests against its lanes as they are then, so the second is exact too.
             const uint32_t viaBase = o.slotBegin[p];
             for (uint32_t h = 0; h < hits; ++h) {
                 const uint32_t j = hitColumn[h];

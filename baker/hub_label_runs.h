@@ -36,7 +36,7 @@ struct LabelOverlay {
     std::vector<uint32_t> patchLeaf;      // per patch: its leaf tree node (tree in preorder), or 0
     // Per patch, 1 where closePatchMatrix closed its matrix (empty: none): a run then never
     // reads a node's row there for the lanes that reached the node through that very row's
-    // slot (BlockRuns::run: why that gives the same distances).
+    // slot (BlockRuns::search: why that gives the same distances).
     std::vector<uint8_t> closed;
 };
 

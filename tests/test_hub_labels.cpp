@@ -430,7 +430,7 @@ TEST_CASE("hub labels: block runs give a Dijkstra per source's distances, AVX2 a
     }
     SECTION("closed matrices whose sums could round: no row skipped") {
         // Steps of 53 significant bits: a run's sums are not exact, so it searches again
-        // without skipping and still gives the Dijkstra's distances.
+        // without skipping, and gives the Dijkstra's distances up to their rounding.
         checkBlockRunsAgainstDijkstra(4000, [](uint32_t, std::mt19937& rng) { return 0.001 * (1 + rng() % 7); },
                                       Closed::roundedSums);
     }

@@ -49,10 +49,90 @@ void orderPatch(const Patch& patch, const std::vector<uint8_t>& sharing, PatchMa
         if (sharing[v] < 2) out.vertices.push_back(v);
 }
 
-// One layer: domains, then one exact run per matrix row (read at the later rows). The
-// wavefront engine runs each row to the end of its small domain and still beats MMP
-// stopping at the last target (BENCHMARKS.md).
-// The order in which a patch's rows run when their runs are bounded (computeLayer): by
+// A thread's scratch for the exact runs of a layer.
+struct RunScratch {
+    WavefrontWorkspace workspace;
+    std::vector<double> dist;
+    std::vector<WavefrontWorkspace::Target> targets;
+};
+
+// Progress over `total` jobs of a parallel loop: about 200 calls, never overlapping.
+class JobProgress {
+public:
+    JobProgress(const StageProgress& progress, const char* stage, size_t total)
+        : progress_(progress), stage_(stage), total_(total), step_(std::max<size_t>(1, total / 200)) {}
+    void oneDone() {
+        const size_t n = ++done_;
+        if (progress_ && (n % step_ == 0 || n == total_)) {
+            std::lock_guard<std::mutex> lock(mutex_);
+            progress_(stage_, double(n) / double(total_));
+        }
+    }
+
+private:
+    const StageProgress& progress_;
+    const char* stage_;
+    size_t total_, step_;
+    std::atomic<size_t> done_{0};
+    std::mutex mutex_;
+};
+
+// Every pair of one patch's rows from runs bounded by the rows run before them (the second
+// layer, where no bounds are known in advance). Row 0 and the row `a` farthest from it run
+// whole; the others run by decreasing distance from a, each to the rows after it, so the
+// rows left to a run lie within its own distance of a, near its source, and the run does
+// only the work between them. A pair (s, t) of later rows is bounded by the triangle
+// through a row p that ran before both, d(p, s) + d(p, t), both exact already: p in {0, a}
+// and s's nearest earlier row (a neighbour on the level sets of a, so the bound's slack is
+// about two of its edges). A pair the bound missed (rounding; never seen) runs again whole.
+void runRowsBounded(const ExactGeodesic& geo, PatchMatrix& m, RunScratch& scratch) {
+    WavefrontWorkspace& workspace = scratch.workspace;
+    std::vector<double>& dist = scratch.dist;
+    std::vector<WavefrontWorkspace::Target>& targets = scratch.targets;
+    const uint32_t n = m.rows;
+    std::vector<uint32_t> local(n);
+    for (uint32_t r = 0; r < n; ++r) local[r] = uint32_t(geo.localVertex(m.vertices[r]));
+    auto set = [&](uint32_t i, uint32_t j, double d) { m.upper[upperIndex(n, std::min(i, j), std::max(i, j))] = d; };
+    std::vector<uint8_t> done(n, 0);  // rows whose pairs with every row are known
+    auto runWhole = [&](uint32_t r) {
+        workspace.run(geo, {local[r]}, dist);
+        for (uint32_t j = 0; j < n; ++j)
+            if (j != r && !done[j]) set(r, j, dist[local[j]]);
+        done[r] = 1;
+    };
+    runWhole(0);
+    uint32_t a = 0;
+    for (uint32_t j = 1; j < n; ++j)
+        if (m.at(0, j) > m.at(0, a)) a = j;
+    if (n > 2 && a != 0) runWhole(a);  // with two rows, row 0 gave the only pair
+    std::vector<uint32_t> order;
+    for (uint32_t j = 0; j < n; ++j)
+        if (!done[j]) order.push_back(j);
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return m.at(a, x) > m.at(a, y); });
+    for (size_t k = 0; k + 1 < order.size(); ++k) {
+        const uint32_t s = order[k];
+        uint32_t nearest = 0;  // s's nearest row among those run before it
+        double toNearest = m.at(0, s);
+        for (size_t q = 0; q <= k; ++q) {
+            const uint32_t p = q < k ? order[q] : a;
+            if (m.at(p, s) < toNearest) nearest = p, toNearest = m.at(p, s);
+        }
+        const double viaZero = m.at(0, s), viaA = m.at(a, s);
+        targets.clear();
+        for (size_t q = k + 1; q < order.size(); ++q) {
+            const uint32_t t = order[q];
+            const double bound = std::min({viaZero + m.at(0, t), viaA + m.at(a, t), toNearest + m.at(nearest, t)});
+            targets.push_back({local[t], bound * (1.0 + 1e-6)});
+        }
+        workspace.runToTargets(geo, local[s], targets, dist);
+        bool missed = false;
+        for (const WavefrontWorkspace::Target& t : targets) missed |= dist[t.vertex] == kInfinity;
+        if (missed) workspace.run(geo, {local[s]}, dist);
+        for (size_t q = k + 1; q < order.size(); ++q) set(s, order[q], dist[local[order[q]]]);
+    }
+}
+
+// The order in which a first-layer patch's rows run (computeLayer): by
 // decreasing upper bound from an end row a (the row farthest from row 0; ties: the lower
 // row), a last. The rows left to the run of a row r are then no farther from a than r, so
 // within twice r's distance to a, and the rows near a run small.
@@ -70,10 +150,12 @@ std::vector<uint32_t> boundedRunOrder(const PatchMatrix& upperBounds) {
 }
 
 // Exact rows of every patch: one wavefront run per row (but the last), each giving the
-// pairs with the rows after it. With `upperBounds` (first layer: the composed overlay, whose
-// node paths are surface paths inside the grown patch and so never shorter than the exact
-// distances), the rows run in boundedRunOrder and each run goes to its pairs' rows only,
-// each bounded by its pair's bound (times 1 + 1e-6; runToTargets drops the windows that
+// pairs with the rows after it, each run going to those rows only. Without `upperBounds`
+// (the second layer) each patch is one job, its rows bounded by the rows run before them
+// (runRowsBounded). With them (the first layer: the composed overlay, whose node paths are
+// surface paths inside the grown patch and so never shorter than the exact distances),
+// every row is a job of its own: the rows run in boundedRunOrder, each run to its pairs'
+// rows, each bounded by its pair's bound (times 1 + 1e-6; runToTargets drops the windows that
 // cannot reach any of them within it): the pairs left to a run lie close to its source,
 // and the run does only the work between them (igea: 72% of the windows of a run bounded
 // by the largest bound, the same distances). A pair the bound missed (never seen) is
@@ -93,17 +175,25 @@ void computeLayer(const Mesh& mesh, const std::vector<Patch>& patches, const std
         if (m.rows >= 2) domains[p] = std::make_unique<ExactGeodesic>(mesh, growFaces(mesh, patches[p].faces, options.marginRings));
     });
 
+    PerThread<RunScratch> scratch;
+    if (!upperBounds) {
+        // One job per patch (its rows depend on each other), the largest first.
+        std::vector<uint32_t> byRows;
+        for (uint32_t p = 0; p < patches.size(); ++p)
+            if (out[p].rows >= 2) byRows.push_back(p);
+        std::stable_sort(byRows.begin(), byRows.end(), [&](uint32_t x, uint32_t y) { return out[x].rows > out[y].rows; });
+        for (uint32_t p : byRows) runs += out[p].rows - 1;
+        JobProgress tick(progress, stage, byRows.size());
+        parallelFor(byRows.size(), [&](size_t k) {
+            runRowsBounded(*domains[byRows[k]], out[byRows[k]], scratch.local());
+            tick.oneDone();
+        });
+        return;
+    }
     // Per patch, the rows in the order they run (position k gives the pairs with positions
     // after k).
     std::vector<std::vector<uint32_t>> order(patches.size());
-    parallelFor(patches.size(), [&](size_t p) {
-        if (upperBounds) {
-            order[p] = boundedRunOrder((*upperBounds)[p]);
-        } else {
-            order[p].resize(out[p].rows);
-            for (uint32_t r = 0; r < out[p].rows; ++r) order[p][r] = r;
-        }
-    });
+    parallelFor(patches.size(), [&](size_t p) { order[p] = boundedRunOrder((*upperBounds)[p]); });
     struct Job {
         uint32_t patch, row;  // row: the position in order[patch]
     };
@@ -115,46 +205,29 @@ void computeLayer(const Mesh& mesh, const std::vector<Patch>& patches, const std
         return out[a.patch].rows - a.row > out[b.patch].rows - b.row;
     });
     runs += jobs.size();
-
-    struct Scratch {
-        WavefrontWorkspace workspace;
-        std::vector<double> dist;
-        std::vector<WavefrontWorkspace::Target> targets;
-    };
-    PerThread<Scratch> scratch;
-    std::atomic<size_t> done{0};
-    std::mutex progressMutex;
-    const size_t step = std::max<size_t>(1, jobs.size() / 200);
+    JobProgress tick(progress, stage, jobs.size());
     parallelFor(jobs.size(), [&](size_t k) {
         const Job job = jobs[k];
         PatchMatrix& m = out[job.patch];
         const ExactGeodesic& geo = *domains[job.patch];
-        Scratch& s = scratch.local();
+        RunScratch& s = scratch.local();
         const std::vector<uint32_t>& rows = order[job.patch];
         const uint32_t source = rows[job.row];
         const uint32_t sourceVertex = uint32_t(geo.localVertex(m.vertices[source]));
-        if (upperBounds) {
-            s.targets.clear();
-            for (uint32_t k = job.row + 1; k < m.rows; ++k)
-                s.targets.push_back({uint32_t(geo.localVertex(m.vertices[rows[k]])),
-                                     (*upperBounds)[job.patch].at(source, rows[k]) * (1.0 + 1e-6)});
-            s.workspace.runToTargets(geo, sourceVertex, s.targets, s.dist);
-            bool missed = false;
-            for (const WavefrontWorkspace::Target& t : s.targets) missed |= s.dist[t.vertex] == kInfinity;
-            if (missed) s.workspace.run(geo, {sourceVertex}, s.dist);
-        } else {
-            s.workspace.run(geo, {sourceVertex}, s.dist);
-        }
+        s.targets.clear();
+        for (uint32_t k = job.row + 1; k < m.rows; ++k)
+            s.targets.push_back({uint32_t(geo.localVertex(m.vertices[rows[k]])),
+                                 (*upperBounds)[job.patch].at(source, rows[k]) * (1.0 + 1e-6)});
+        s.workspace.runToTargets(geo, sourceVertex, s.targets, s.dist);
+        bool missed = false;
+        for (const WavefrontWorkspace::Target& t : s.targets) missed |= s.dist[t.vertex] == kInfinity;
+        if (missed) s.workspace.run(geo, {sourceVertex}, s.dist);
         for (uint32_t k = job.row + 1; k < m.rows; ++k) {
             const uint32_t target = rows[k];
             m.upper[upperIndex(m.rows, std::min(source, target), std::max(source, target))] =
                 s.dist[size_t(geo.localVertex(m.vertices[target]))];
         }
-        const size_t n = ++done;
-        if (progress && (n % step == 0 || n == jobs.size())) {
-            std::lock_guard<std::mutex> lock(progressMutex);
-            progress(stage, double(n) / double(jobs.size()));
-        }
+        tick.oneDone();
     });
 }
 

@@ -9,6 +9,7 @@
 #include <iterator>
 #include <map>
 #include <set>
+#include <tuple>
 
 #include <tbb/global_control.h>
 
@@ -463,6 +464,48 @@ TEST_CASE("bake: every shared mesh bakes with defaults", "[bake][shared]") {
         const tools::BlobContents c = unpack(bakeWith(mesh, BakeOptions(), 2, &report));
         CHECK(c.graph()->vertex_count() == mesh.vertexCount());
         CHECK(report.secondPatches > report.firstPatches);
+    }
+}
+
+TEST_CASE("bake: second-layer entries equal unbounded exact runs, for any thread count", "[bake]") {
+    // The second layer's rows run bounded by the rows run before them (patch_geodesics.cpp):
+    // every entry, interior pairs included, must still be the exact distance on the patch
+    // plus its margin ring, in either direction, on saddles, holes, needles and meshes of
+    // two components.
+    for (const auto& [name, mesh, n1, n2] :
+         {std::tuple<const char*, Mesh, uint32_t, uint32_t>{"bumpy torus", smallBumpy(), 4, 10},
+          {"grid with holes", gridWithHoles(30, 4), 3, 6},
+          {"needles", needleMesh(60, 8), 2, 5},
+          {"two components", twoComponents(), 2, 4}}) {
+        INFO(name);
+        PartitionOptions po;
+        po.firstLayerSeeds = n1;
+        po.secondLayerSeeds = n2;
+        const Partition partition = partitionMesh(mesh, po);
+        const PatchGeodesics g = computePatchGeodesics(mesh, partition, PatchGeodesicsOptions());
+        REQUIRE(g.second.size() == partition.second.size());
+        WavefrontWorkspace ws;
+        std::vector<double> dist;
+        size_t checked = 0;
+        for (uint32_t p = 0; p < partition.second.size(); ++p) {
+            const PatchMatrix& m = g.second[p];
+            REQUIRE(m.rows == m.vertices.size());
+            const ExactGeodesic geo(mesh, growFaces(mesh, partition.second[p].faces, PatchGeodesicsOptions().marginRings));
+            for (uint32_t i = 0; i < m.rows; ++i) {
+                ws.run(geo, {uint32_t(geo.localVertex(m.vertices[i]))}, dist);
+                for (uint32_t j = 0; j < m.rows; ++j) {
+                    const double exact = dist[geo.localVertex(m.vertices[j])];
+                    if (exact == kInfinity) REQUIRE(m.at(i, j) == kInfinity);
+                    else REQUIRE(std::fabs(m.at(i, j) - exact) <= 1e-9 * (1.0 + exact));
+                    ++checked;
+                }
+            }
+        }
+        CHECK(checked > 1000);
+        BakeOptions b;
+        b.n1 = n1;
+        b.n2 = n2;
+        CHECK(bakeWith(mesh, b, 1) == bakeWith(mesh, b, 2));
     }
 }
 

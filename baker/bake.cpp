@@ -66,7 +66,8 @@ void validate(const Mesh& mesh, const BakeOptions& o) {
 
 int automaticLevel(bool coded, uint64_t payloadBytes) {
     if (!coded) return 9;
-    return payloadBytes <= (uint64_t(1) << 30) ? 19 : 11;
+    if (payloadBytes <= (uint64_t(32) << 20)) return 19;
+    return payloadBytes <= (uint64_t(1) << 30) ? 17 : 11;
 }
 
 std::vector<uint8_t> bakeMesh(const Mesh& mesh, const BakeOptions& options, BakeReport& report,

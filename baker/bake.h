@@ -32,10 +32,11 @@ struct BakeOptions {
 };
 
 // The automatic zstd level for a payload of `payloadBytes`: 9 for plain quanta, which
-// hardly compress anyway; for coded blobs 19 (igea: 10% smaller than 9, 10 s more with 2
-// threads), but 11 above 1 GiB of payload: there zstd's optimal-parse levels (16 and up)
-// cost 5-11x the time of 11 for 8-12% fewer bytes, and igea x16's 4.3 GB took 5.4 of its
-// bake's 20.4 minutes at 17. BENCHMARKS.md has the figures.
+// hardly compress anyway. For coded blobs the optimal-parse levels pay, at a time that
+// grows with the payload: 19 up to 32 MiB (a few seconds); 17 up to 1 GiB (igea's
+// labelled 109 MB: 1.3% more bytes than 19 in 0.55x its time, 36.5 -> 20.2 s on one
+// thread); 11 above (16 and up cost 5-11x the time of 11 for 8-12% fewer bytes, and igea
+// x16's 4.3 GB took 5.4 of its bake's 20.4 minutes at 17). BENCHMARKS.md has the figures.
 int automaticLevel(bool coded, uint64_t payloadBytes);
 
 // The automatic pruning threshold (fraction of the bounding-box diagonal).

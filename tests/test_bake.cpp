@@ -205,8 +205,11 @@ TEST_CASE("bake library: vorogeo::bake reports progress, can be cancelled, gives
     cancel = true;
     CHECK_THROWS_AS(bake(mesh, BakeOptions(), BakeProgress(), &cancel), BakeCancelled);
     CHECK(automaticLevel(false, 100 << 20) == 9);
-    CHECK(automaticLevel(true, 100 << 20) == 19);
-    CHECK(automaticLevel(true, uint64_t(1) << 30) == 19);
+    CHECK(automaticLevel(true, 1 << 20) == 19);
+    CHECK(automaticLevel(true, 32 << 20) == 19);
+    CHECK(automaticLevel(true, (32 << 20) + 1) == 17);
+    CHECK(automaticLevel(true, 100 << 20) == 17);
+    CHECK(automaticLevel(true, uint64_t(1) << 30) == 17);
     CHECK(automaticLevel(true, (uint64_t(1) << 30) + 1) == 11);
     CHECK(automaticLevel(true, uint64_t(3) << 30) == 11);
     BakeOptions bad;

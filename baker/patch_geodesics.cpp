@@ -77,6 +77,35 @@ private:
     std::mutex mutex_;
 };
 
+// The order in which a patch's rows run when each runs to the rows after it: by
+// decreasing upper bound (the first layer) or distance (the second) from an end row a
+// (the row farthest from row 0; ties: the lower row), a last. The rows left to the run of a row r are then no farther from a than r, so
+// within twice r's distance to a, and the rows near a run small.
+std::vector<uint32_t> boundedRunOrder(const PatchMatrix& upperBounds) {
+    const uint32_t n = upperBounds.rows;
+    uint32_t end = 0;
+    for (uint32_t j = 1; j < n; ++j)
+        if (upperBounds.at(0, j) > upperBounds.at(0, end)) end = j;
+    std::vector<uint32_t> order(n);
+    for (uint32_t j = 0; j < n; ++j) order[j] = j;
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) {
+        return upperBounds.at(end, x) > upperBounds.at(end, y);
+    });
+    return order;
+}
+
+// A run to `targets`, done again whole if a bound missed one (only by rounding; never
+// seen): every target then has its exact distance.
+void runToTargetsOrWhole(WavefrontWorkspace& workspace, const ExactGeodesic& geo, uint32_t source,
+                         const std::vector<WavefrontWorkspace::Target>& targets, std::vector<double>& dist) {
+    workspace.runToTargets(geo, source, targets, dist);
+    for (const WavefrontWorkspace::Target& t : targets)
+        if (dist[t.vertex] == kInfinity) {
+            workspace.run(geo, {source}, dist);
+            return;
+        }
+}
+
 // Every pair of one patch's rows from runs bounded by the rows run before them (the second
 // layer, where no bounds are known in advance). Row 0 and the row `a` farthest from it run
 // whole; the others run by decreasing distance from a, each to the rows after it, so the
@@ -84,7 +113,7 @@ private:
 // only the work between them. A pair (s, t) of later rows is bounded by the triangle
 // through a row p that ran before both, d(p, s) + d(p, t), both exact already: p in {0, a}
 // and s's nearest earlier row (a neighbour on the level sets of a, so the bound's slack is
-// about two of its edges). A pair the bound missed (rounding; never seen) runs again whole.
+// about two of its edges).
 void runRowsBounded(const ExactGeodesic& geo, PatchMatrix& m, RunScratch& scratch) {
     WavefrontWorkspace& workspace = scratch.workspace;
     std::vector<double>& dist = scratch.dist;
@@ -105,18 +134,16 @@ void runRowsBounded(const ExactGeodesic& geo, PatchMatrix& m, RunScratch& scratc
     for (uint32_t j = 1; j < n; ++j)
         if (m.at(0, j) > m.at(0, a)) a = j;
     if (n > 2 && a != 0) runWhole(a);  // with two rows, row 0 gave the only pair
-    std::vector<uint32_t> order;
-    for (uint32_t j = 0; j < n; ++j)
-        if (!done[j]) order.push_back(j);
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return m.at(a, x) > m.at(a, y); });
+    // Rows 0 and a have every pair now: the exact distances order the rest as the first
+    // layer's bounds order its rows.
+    std::vector<uint32_t> order = boundedRunOrder(m);
+    order.erase(std::remove_if(order.begin(), order.end(), [&](uint32_t r) { return done[r] != 0; }), order.end());
     for (size_t k = 0; k + 1 < order.size(); ++k) {
         const uint32_t s = order[k];
-        uint32_t nearest = 0;  // s's nearest row among those run before it
-        double toNearest = m.at(0, s);
-        for (size_t q = 0; q <= k; ++q) {
-            const uint32_t p = q < k ? order[q] : a;
-            if (m.at(p, s) < toNearest) nearest = p, toNearest = m.at(p, s);
-        }
+        uint32_t nearest = m.at(a, s) < m.at(0, s) ? a : 0;  // s's nearest row among those run before it
+        double toNearest = m.at(nearest, s);
+        for (size_t q = 0; q < k; ++q)
+            if (m.at(order[q], s) < toNearest) nearest = order[q], toNearest = m.at(order[q], s);
         const double viaZero = m.at(0, s), viaA = m.at(a, s);
         targets.clear();
         for (size_t q = k + 1; q < order.size(); ++q) {
@@ -124,29 +151,9 @@ void runRowsBounded(const ExactGeodesic& geo, PatchMatrix& m, RunScratch& scratc
             const double bound = std::min({viaZero + m.at(0, t), viaA + m.at(a, t), toNearest + m.at(nearest, t)});
             targets.push_back({local[t], bound * (1.0 + 1e-6)});
         }
-        workspace.runToTargets(geo, local[s], targets, dist);
-        bool missed = false;
-        for (const WavefrontWorkspace::Target& t : targets) missed |= dist[t.vertex] == kInfinity;
-        if (missed) workspace.run(geo, {local[s]}, dist);
+        runToTargetsOrWhole(workspace, geo, local[s], targets, dist);
         for (size_t q = k + 1; q < order.size(); ++q) set(s, order[q], dist[local[order[q]]]);
     }
-}
-
-// The order in which a first-layer patch's rows run (computeLayer): by
-// decreasing upper bound from an end row a (the row farthest from row 0; ties: the lower
-// row), a last. The rows left to the run of a row r are then no farther from a than r, so
-// within twice r's distance to a, and the rows near a run small.
-std::vector<uint32_t> boundedRunOrder(const PatchMatrix& upperBounds) {
-    const uint32_t n = upperBounds.rows;
-    uint32_t end = 0;
-    for (uint32_t j = 1; j < n; ++j)
-        if (upperBounds.at(0, j) > upperBounds.at(0, end)) end = j;
-    std::vector<uint32_t> order(n);
-    for (uint32_t j = 0; j < n; ++j) order[j] = j;
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) {
-        return upperBounds.at(end, x) > upperBounds.at(end, y);
-    });
-    return order;
 }
 
 // Exact rows of every patch: one wavefront run per row (but the last), each giving the
@@ -218,10 +225,7 @@ void computeLayer(const Mesh& mesh, const std::vector<Patch>& patches, const std
         for (uint32_t k = job.row + 1; k < m.rows; ++k)
             s.targets.push_back({uint32_t(geo.localVertex(m.vertices[rows[k]])),
                                  (*upperBounds)[job.patch].at(source, rows[k]) * (1.0 + 1e-6)});
-        s.workspace.runToTargets(geo, sourceVertex, s.targets, s.dist);
-        bool missed = false;
-        for (const WavefrontWorkspace::Target& t : s.targets) missed |= s.dist[t.vertex] == kInfinity;
-        if (missed) s.workspace.run(geo, {sourceVertex}, s.dist);
+        runToTargetsOrWhole(s.workspace, geo, sourceVertex, s.targets, s.dist);
         for (uint32_t k = job.row + 1; k < m.rows; ++k) {
             const uint32_t target = rows[k];
             m.upper[upperIndex(m.rows, std::min(source, target), std::max(source, target))] =

@@ -83,18 +83,76 @@ ExactGeodesic::ExactGeodesic(const Mesh& mesh) : mesh_(&mesh) {
     precompute();
 }
 
-ExactGeodesic::ExactGeodesic(const Mesh& mesh, const std::vector<uint32_t>& faces) {
+namespace {
+
+// Interleaves the low 10 bits of x with two zero bits each (a Morton code's one axis).
+uint32_t spreadBits(uint32_t x) {
+    x &= 0x3FFu;
+    x = (x | (x << 16)) & 0x030000FFu;
+    x = (x | (x << 8)) & 0x0300F00Fu;
+    x = (x | (x << 4)) & 0x030C30C3u;
+    x = (x | (x << 2)) & 0x09249249u;
+    return x;
+}
+
+// `faces` reordered by the Morton code of their centroids (ties: the input's order), on a
+// 1024^3 grid over their bounding box.
+void mortonOrder(const Mesh& mesh, std::vector<uint32_t>& faces) {
+    if (faces.empty()) return;
+    std::vector<Vec3> centre(faces.size());
+    Vec3 lo = mesh.positions[mesh.faces[faces[0]][0]], hi = lo;
+    for (size_t i = 0; i < faces.size(); ++i) {
+        const Tri& t = mesh.faces[faces[i]];
+        centre[i] = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) * (1.0 / 3.0);
+        lo = {std::min(lo.x, centre[i].x), std::min(lo.y, centre[i].y), std::min(lo.z, centre[i].z)};
+        hi = {std::max(hi.x, centre[i].x), std::max(hi.y, centre[i].y), std::max(hi.z, centre[i].z)};
+    }
+    const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    const double scale = extent > 0 ? 1023.0 / extent : 0.0;  // 1023: a centroid on the box's far side still fits 10 bits
+    std::vector<std::pair<uint32_t, uint32_t>> keyed(faces.size());
+    for (size_t i = 0; i < faces.size(); ++i) {
+        const Vec3 q = (centre[i] - lo) * scale;
+        keyed[i] = {spreadBits(uint32_t(q.x)) | (spreadBits(uint32_t(q.y)) << 1) | (spreadBits(uint32_t(q.z)) << 2),
+                    uint32_t(i)};
+    }
+    std::sort(keyed.begin(), keyed.end());
+    std::vector<uint32_t> ordered(faces.size());
+    for (size_t i = 0; i < faces.size(); ++i) ordered[i] = faces[keyed[i].second];
+    faces.swap(ordered);
+}
+
+}  // namespace
+
+ExactGeodesic::ExactGeodesic(const Mesh& mesh, const std::vector<uint32_t>& faces, bool spatialOrder) {
     owned_ = std::make_unique<Mesh>();
     std::vector<uint32_t> sorted = faces;
     std::sort(sorted.begin(), sorted.end());
     sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
     for (uint32_t f : sorted)
         if (f >= mesh.faceCount()) throw std::invalid_argument("patch face " + std::to_string(f) + " out of range");
-    for (uint32_t f : sorted)
-        for (uint32_t v : mesh.faces[f]) toGlobal_.push_back(v);
-    std::sort(toGlobal_.begin(), toGlobal_.end());
-    toGlobal_.erase(std::unique(toGlobal_.begin(), toGlobal_.end()), toGlobal_.end());
-    sortedVertices_ = toGlobal_.size();
+    if (spatialOrder) {
+        // Faces in Morton order, vertices in the order the faces first name them: a run's
+        // front then touches faces and vertices that share cache lines, where an input's
+        // scanline order puts a face's neighbours across the row far apart.
+        mortonOrder(mesh, sorted);
+        std::vector<std::pair<uint32_t, uint32_t>> firstNamed;  // (vertex, corner), by vertex then corner
+        for (uint32_t f = 0; f < sorted.size(); ++f)
+            for (int k = 0; k < 3; ++k) firstNamed.push_back({mesh.faces[sorted[f]][k], 3 * f + uint32_t(k)});
+        std::sort(firstNamed.begin(), firstNamed.end());
+        firstNamed.erase(std::unique(firstNamed.begin(), firstNamed.end(),
+                                     [](const auto& x, const auto& y) { return x.first == y.first; }),
+                         firstNamed.end());
+        std::sort(firstNamed.begin(), firstNamed.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
+        for (const auto& named : firstNamed) toGlobal_.push_back(named.first);
+    } else {
+        for (uint32_t f : sorted)
+            for (uint32_t v : mesh.faces[f]) toGlobal_.push_back(v);
+        std::sort(toGlobal_.begin(), toGlobal_.end());
+        toGlobal_.erase(std::unique(toGlobal_.begin(), toGlobal_.end()), toGlobal_.end());
+    }
+    vertexLookup_.resize(toGlobal_.size());
+    for (uint32_t i = 0; i < toGlobal_.size(); ++i) vertexLookup_[i] = {toGlobal_[i], i};
+    std::sort(vertexLookup_.begin(), vertexLookup_.end());
     owned_->positions.reserve(toGlobal_.size());
     for (uint32_t v : toGlobal_) owned_->positions.push_back(mesh.positions[v]);
     owned_->faces.reserve(sorted.size());
@@ -103,6 +161,9 @@ ExactGeodesic::ExactGeodesic(const Mesh& mesh, const std::vector<uint32_t>& face
         for (int k = 0; k < 3; ++k) t[k] = uint32_t(localVertex(mesh.faces[f][k]));
         owned_->faces.push_back(t);
     }
+    faceLookup_.resize(sorted.size());
+    for (uint32_t i = 0; i < sorted.size(); ++i) faceLookup_[i] = {sorted[i], i};
+    std::sort(faceLookup_.begin(), faceLookup_.end());
     faceToGlobal_ = std::move(sorted);
     splitPinchedVertices();
     ConnectivityReport rep = buildConnectivity(*owned_);
@@ -168,16 +229,15 @@ void ExactGeodesic::splitPinchedVertices() {
 
 int64_t ExactGeodesic::localVertex(uint32_t global) const {
     if (!owned_) return global < mesh_->vertexCount() ? int64_t(global) : -1;
-    // Copies of split vertices follow the sorted part.
-    auto end = toGlobal_.begin() + std::ptrdiff_t(sortedVertices_);
-    auto it = std::lower_bound(toGlobal_.begin(), end, global);
-    return (it != end && *it == global) ? int64_t(it - toGlobal_.begin()) : -1;
+    // Copies of split vertices (appended later) are not in the lookup: it gives the first.
+    auto it = std::lower_bound(vertexLookup_.begin(), vertexLookup_.end(), std::make_pair(global, 0u));
+    return (it != vertexLookup_.end() && it->first == global) ? int64_t(it->second) : -1;
 }
 
 int64_t ExactGeodesic::localFace(uint32_t global) const {
     if (!owned_) return global < mesh_->faceCount() ? int64_t(global) : -1;
-    auto it = std::lower_bound(faceToGlobal_.begin(), faceToGlobal_.end(), global);
-    return (it != faceToGlobal_.end() && *it == global) ? int64_t(it - faceToGlobal_.begin()) : -1;
+    auto it = std::lower_bound(faceLookup_.begin(), faceLookup_.end(), std::make_pair(global, 0u));
+    return (it != faceLookup_.end() && it->first == global) ? int64_t(it->second) : -1;
 }
 
 void ExactGeodesic::precompute() {

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "bucket_queue.h"
@@ -71,8 +72,12 @@ class ExactGeodesic {
 public:
     // Whole mesh; `mesh` must outlive this object and have connectivity built.
     explicit ExactGeodesic(const Mesh& mesh);
-    // Patch: the given faces of `mesh` (which need not outlive this object).
-    ExactGeodesic(const Mesh& mesh, const std::vector<uint32_t>& faces);
+    // Patch: the given faces of `mesh` (which need not outlive this object). Domain faces
+    // and vertices follow the input's order, or with `spatialOrder` the faces' Morton
+    // order and the vertices in the order the faces name them: neighbours then share cache
+    // lines, and runs on inputs in scanline order are faster (BENCHMARKS.md). Distances
+    // agree either way; map with localVertex/localFace.
+    ExactGeodesic(const Mesh& mesh, const std::vector<uint32_t>& faces, bool spatialOrder = false);
 
     const Mesh& mesh() const { return *mesh_; }
     uint32_t vertexCount() const { return mesh_->vertexCount(); }
@@ -93,10 +98,10 @@ private:
 
     std::unique_ptr<Mesh> owned_;  // the extracted patch, when the domain is one
     const Mesh* mesh_ = nullptr;
-    std::vector<uint32_t> toGlobal_;      // local vertex -> input vertex (patch only)
-    size_t sortedVertices_ = 0;           // toGlobal_ is sorted up to here; copies follow
+    std::vector<uint32_t> toGlobal_;      // local vertex -> input vertex (patch only); copies of split vertices last
     std::vector<uint32_t> alias_;         // circular lists of copies of split vertices
     std::vector<uint32_t> faceToGlobal_;  // local face -> input face (patch only)
+    std::vector<std::pair<uint32_t, uint32_t>> vertexLookup_, faceLookup_;  // (input, local), sorted (patch only)
 
     struct HalfedgeFrame {  // the face of h unfolded with tail(h) at 0 and head(h) on +x
         double apexX, apexY;

@@ -179,7 +179,7 @@ void computeLayer(const Mesh& mesh, const std::vector<Patch>& patches, const std
         orderPatch(patches[p], sharing, m);
         m.rows = nodesOnly ? m.nodeCount : uint32_t(m.vertices.size());
         m.upper.assign(size_t(m.rows) * (m.rows > 0 ? m.rows - 1 : 0) / 2, kInfinity);
-        if (m.rows >= 2) domains[p] = std::make_unique<ExactGeodesic>(mesh, growFaces(mesh, patches[p].faces, options.marginRings));
+        if (m.rows >= 2) domains[p] = std::make_unique<ExactGeodesic>(mesh, growFaces(mesh, patches[p].faces, options.marginRings), true);
     });
 
     PerThread<RunScratch> scratch;

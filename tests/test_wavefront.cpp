@@ -96,6 +96,53 @@ TEST_CASE("wavefront: a patch domain, pinched vertex included, matches MMP", "[e
     }
 }
 
+TEST_CASE("wavefront: a patch domain in Morton order maps every vertex and face and gives the same distances",
+          "[exact][wavefront]") {
+    const Mesh m = bumpyTorus(60, 30);
+    std::vector<uint32_t> faces, outside;
+    for (uint32_t f = 0; f < m.faceCount(); ++f)
+        ((f / 7) % 3 != 1 ? faces : outside).push_back(f);  // holes and pinches, as above
+    const ExactGeodesic input(m, faces), spatial(m, faces, true);
+    REQUIRE(spatial.vertexCount() == input.vertexCount());  // the same pinched copies
+    bool reordered = false;
+    for (uint32_t v = 0; v < spatial.vertexCount(); ++v) {
+        const uint32_t global = spatial.globalVertex(v);
+        REQUIRE(global < m.vertexCount());
+        const int64_t back = spatial.localVertex(global);
+        REQUIRE(back >= 0);
+        // A pinched vertex's copies map back to its first domain vertex, at the same point.
+        CHECK(spatial.globalVertex(uint32_t(back)) == global);
+        if (v > 0 && global < spatial.globalVertex(v - 1)) reordered = true;
+    }
+    CHECK(reordered);  // the flag took effect: not the input's ascending order
+    std::vector<uint8_t> inDomain(m.faceCount(), 0);
+    for (uint32_t f : faces) inDomain[f] = 1;
+    std::vector<uint8_t> hit(spatial.mesh().faceCount(), 0);
+    for (uint32_t f = 0; f < m.faceCount(); ++f) {
+        const int64_t local = spatial.localFace(f);
+        REQUIRE((local >= 0) == (inDomain[f] != 0));
+        if (local < 0) continue;
+        REQUIRE(local < int64_t(spatial.mesh().faceCount()));
+        CHECK(hit[size_t(local)]++ == 0);
+        for (int k = 0; k < 3; ++k)  // the same corners, in the same turn
+            CHECK(spatial.globalVertex(spatial.mesh().faces[size_t(local)][k]) == m.faces[f][k]);
+    }
+    WavefrontWorkspace ws;
+    for (uint32_t source : {m.faces[faces[0]][0], m.faces[faces[faces.size() / 2]][1], m.faces[faces.back()][2]}) {
+        INFO("source " << source);
+        std::vector<double> a, b;
+        ws.run(input, {uint32_t(input.localVertex(source))}, a);
+        ws.run(spatial, {uint32_t(spatial.localVertex(source))}, b);
+        double worst = 0;
+        for (uint32_t v = 0; v < input.vertexCount(); ++v) {
+            const double want = a[v], got = b[size_t(spatial.localVertex(input.globalVertex(v)))];
+            REQUIRE(std::isinf(want) == std::isinf(got));
+            if (!std::isinf(want)) worst = std::max(worst, std::fabs(got - want) / std::max(want, 1e-300));
+        }
+        CHECK(worst < 1e-12);
+    }
+}
+
 TEST_CASE("wavefront: out-of-range sources are rejected", "[exact][wavefront]") {
     const Mesh m = planeGrid(4, 4);
     ExactGeodesic geo(m);

@@ -130,25 +130,27 @@ ExactGeodesic::ExactGeodesic(const Mesh& mesh, const std::vector<uint32_t>& face
     sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
     for (uint32_t f : sorted)
         if (f >= mesh.faceCount()) throw std::invalid_argument("patch face " + std::to_string(f) + " out of range");
+    for (uint32_t f : sorted)
+        for (uint32_t v : mesh.faces[f]) toGlobal_.push_back(v);
+    std::sort(toGlobal_.begin(), toGlobal_.end());
+    toGlobal_.erase(std::unique(toGlobal_.begin(), toGlobal_.end()), toGlobal_.end());
     if (spatialOrder) {
         // Faces in Morton order, vertices in the order the faces first name them: a run's
         // front then touches faces and vertices that share cache lines, where an input's
         // scanline order puts a face's neighbours across the row far apart.
         mortonOrder(mesh, sorted);
-        std::vector<std::pair<uint32_t, uint32_t>> firstNamed;  // (vertex, corner), by vertex then corner
-        for (uint32_t f = 0; f < sorted.size(); ++f)
-            for (int k = 0; k < 3; ++k) firstNamed.push_back({mesh.faces[sorted[f]][k], 3 * f + uint32_t(k)});
-        std::sort(firstNamed.begin(), firstNamed.end());
-        firstNamed.erase(std::unique(firstNamed.begin(), firstNamed.end(),
-                                     [](const auto& x, const auto& y) { return x.first == y.first; }),
-                         firstNamed.end());
-        std::sort(firstNamed.begin(), firstNamed.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
-        for (const auto& named : firstNamed) toGlobal_.push_back(named.first);
-    } else {
+        std::vector<uint8_t> named(toGlobal_.size(), 0);  // by position in the sorted vertices
+        std::vector<uint32_t> byFaces;
+        byFaces.reserve(toGlobal_.size());
         for (uint32_t f : sorted)
-            for (uint32_t v : mesh.faces[f]) toGlobal_.push_back(v);
-        std::sort(toGlobal_.begin(), toGlobal_.end());
-        toGlobal_.erase(std::unique(toGlobal_.begin(), toGlobal_.end()), toGlobal_.end());
+            for (uint32_t v : mesh.faces[f]) {
+                const size_t i = size_t(std::lower_bound(toGlobal_.begin(), toGlobal_.end(), v) - toGlobal_.begin());
+                if (!named[i]) {
+                    named[i] = 1;
+                    byFaces.push_back(v);
+                }
+            }
+        toGlobal_.swap(byFaces);
     }
     vertexLookup_.resize(toGlobal_.size());
     for (uint32_t i = 0; i < toGlobal_.size(); ++i) vertexLookup_[i] = {toGlobal_[i], i};

@@ -152,9 +152,10 @@ ExactGeodesic::ExactGeodesic(const Mesh& mesh, const std::vector<uint32_t>& face
             }
         toGlobal_.swap(byFaces);
     }
+    // (In the input's order both lookups come out sorted already.)
     vertexLookup_.resize(toGlobal_.size());
     for (uint32_t i = 0; i < toGlobal_.size(); ++i) vertexLookup_[i] = {toGlobal_[i], i};
-    std::sort(vertexLookup_.begin(), vertexLookup_.end());
+    if (spatialOrder) std::sort(vertexLookup_.begin(), vertexLookup_.end());
     owned_->positions.reserve(toGlobal_.size());
     for (uint32_t v : toGlobal_) owned_->positions.push_back(mesh.positions[v]);
     owned_->faces.reserve(sorted.size());
@@ -165,7 +166,7 @@ ExactGeodesic::ExactGeodesic(const Mesh& mesh, const std::vector<uint32_t>& face
     }
     faceLookup_.resize(sorted.size());
     for (uint32_t i = 0; i < sorted.size(); ++i) faceLookup_[i] = {sorted[i], i};
-    std::sort(faceLookup_.begin(), faceLookup_.end());
+    if (spatialOrder) std::sort(faceLookup_.begin(), faceLookup_.end());
     faceToGlobal_ = std::move(sorted);
     splitPinchedVertices();
     ConnectivityReport rep = buildConnectivity(*owned_);
